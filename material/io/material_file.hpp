@@ -1,0 +1,57 @@
+#pragma once
+/// Material files: JSON with units in every key. Format (README "Material file"):
+/// {
+///   "name": "foam65",
+///   "density_kg_m3": 65,
+///   "hyperfoam": {"terms": [{"mu_kPa": 12.0, "alpha": 9.0, "nu": 0.0}, ...]},      (1..6 terms)
+///     or "neo_hookean": {"mu_kPa": 10, "lambda_kPa": 5},
+///   "viscoelastic": {"moduli": "long_term" | "instantaneous",
+///                    "prony": [{"g": 0.31, "tau_s": 0.01}, ...]}                     (relative, ABAQUS)
+///     or           {"moduli": ..., "absolute": {"E_inf_kPa": 3.05,
+///                    "terms": [{"E_kPa": 23.9, "tau_s": 0.01}, ...]}}                (paper Table 3)
+/// }
+/// Unknown keys, missing keys, wrong types, out-of-range or non-finite values raise InputError
+/// naming the file and the key path (e.g. "foam.json: hyperfoam.terms[1].alpha: must be non-zero").
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "material/hyperfoam.hpp"
+#include "material/viscoelastic.hpp"
+
+namespace cushion::material {
+
+/// Plain data read from / written to a material file, in internal units (MPa, t/mm^3, s).
+struct MaterialSpec {
+  std::string name = "material";
+  double density = 0.0;  ///< [t/mm^3] (65 kg/m^3 = 6.5e-11 t/mm^3); 0 means "not given"
+  enum class Base { hyperfoam, neo_hookean } base = Base::hyperfoam;
+  std::vector<HyperfoamTerm> hyperfoam;  ///< base == hyperfoam
+  double neo_mu = 0.0, neo_lambda = 0.0; ///< base == neo_hookean [MPa]
+  std::vector<PronyTerm> prony;          ///< empty: purely elastic
+  ModuliConvention moduli = ModuliConvention::long_term;
+};
+
+/// The built model plus what the solver needs besides the constitutive law.
+struct MaterialDefinition {
+  MaterialSpec spec;
+  std::shared_ptr<const Hyperelastic> elastic;  ///< the base as given in the file
+  std::shared_ptr<const Material> model;        ///< elastic, or Viscoelastic wrapping it
+  std::string source;                           ///< file name for messages
+};
+
+/// Builds the model from a spec (throws InputError naming `source` on invalid parameters).
+MaterialDefinition build_material(const MaterialSpec& spec, const std::string& source = "material");
+
+/// Reads and validates a material file; throws InputError("<file>: <key>: <problem>").
+MaterialDefinition read_material_file(const std::filesystem::path& file);
+
+/// Parses material JSON text (for files and for materials embedded in other files).
+MaterialDefinition parse_material_json(const std::string& text, const std::string& source);
+
+/// Writes a spec as a material file (kPa, kg/m^3, s), atomically (temporary file then rename).
+void write_material_file(const MaterialSpec& spec, const std::filesystem::path& file);
+
+}  // namespace cushion::material

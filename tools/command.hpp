@@ -1,0 +1,24 @@
+#pragma once
+/// Subcommand registry of the `cushion` program. Each tools/cmd_<name>.cpp defines
+///   static const cushion::tools::Registrar reg{"name", [](CLI::App& app) { ... app.add_subcommand ... }};
+/// so adding a subcommand needs no edit elsewhere. Callbacks throw cushion::InputError for bad
+/// input (printed on one line, exit 2) and std::runtime_error for failures (exit 1).
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+namespace cushion::tools {
+
+using Setup = std::function<void(CLI::App& app)>;
+
+/// All registered subcommands, in registration order.
+std::vector<std::pair<std::string, Setup>>& registry();
+
+struct Registrar {
+  Registrar(std::string name, Setup setup) { registry().emplace_back(std::move(name), std::move(setup)); }
+};
+
+}  // namespace cushion::tools

@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# Installs the Debian packages cushion needs (as root), only those missing.
+set -euo pipefail
+packages=(cmake g++ make libeigen3-dev libsuitesparse-dev libtet1.5-dev libvtk9-dev libgtest-dev
+          libcli11-dev nlohmann-json3-dev libceres-dev gnuplot-nox)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "deps: installing ${missing[*]}"
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${missing[@]}" >/dev/null
+fi
+echo "deps: all packages present"

@@ -1,0 +1,33 @@
+// cushion: nonlinear FE solver and material calibration toolkit for polyurethane seat foam.
+#include <cstdio>
+#include <exception>
+#include <iostream>
+
+#include "material/input_error.hpp"
+#include "tools/command.hpp"
+
+namespace cushion::tools {
+std::vector<std::pair<std::string, Setup>>& registry() {
+  static std::vector<std::pair<std::string, Setup>> commands;
+  return commands;
+}
+}  // namespace cushion::tools
+
+int main(int argc, char** argv) {
+  CLI::App app{"cushion: visco-hyperelastic foam calibration and finite-element analysis"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "cushion 0.1.0");
+  for (auto& [name, setup] : cushion::tools::registry()) setup(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const cushion::InputError& e) {
+    std::cerr << "cushion: input error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "cushion: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
