@@ -44,6 +44,10 @@ struct Segment {
   double cycles = 0.0;     ///< sine: number of cycles
   int steps = 0;           ///< increments in the segment (0: a sensible default)
 };
+/// Samples the segments in order from t = 0, control = 0: ramps linear in time, holds constant, sines
+/// control = c + amplitude sin(2 pi f t') (c: value where the sine starts, t' from its start). Default
+/// steps: 100 per ramp or hold, 64 per sine cycle. Throws InputError naming the segment on durations,
+/// frequencies or cycles <= 0, negative amplitudes or steps, or non-finite values.
 History build_history(const std::vector<Segment>& segments, AxisControl axis_control = AxisControl::displacement);
 
 /// Results at every sampled time.
@@ -53,10 +57,18 @@ struct PointResult {
   std::vector<Mat3> F;               ///< deformation gradient
   std::vector<Mat3> P;               ///< nominal (first Piola-Kirchhoff) stress [MPa]
   std::vector<Mat3> sigma;           ///< Cauchy stress [MPa]
-  std::vector<bool> in_contact;      ///< platen control: whether the platen touches
+  std::vector<bool> in_contact;      ///< platen control: whether the platen touches (always true otherwise)
+  std::vector<std::string> warnings; ///< distinct messages of increments the material flagged `unreliable`
 };
 
-/// Runs the history; throws std::runtime_error with time and reason if the material fails.
+/// Runs the history from the virgin state (F = I at t[0]; a non-zero control[0] is reached with dt = 0).
+/// Each increment integrates from the committed state and commits on success. uniaxial_free solves the
+/// lateral stretches from S22 = S33 = 0 (equivalently P22 = P33 = 0) by Newton on dS/dE to 1e-12.
+/// Platen control (uniaxial modes only): the foam is first let free on axis 1 too (S = 0 from the
+/// committed state); if its free l1 is below the platen stretch 1 + control it is clear (P11 = 0,
+/// in_contact false), else the platen stretch is imposed. Throws std::runtime_error with the time and
+/// reason if the material fails or the lateral Newton does not converge; InputError for platen
+/// control in a volumetric or shear mode or for time/control arrays of different lengths.
 PointResult run_point(const Material& material, LoadMode mode, const History& history);
 
 }  // namespace cushion::material

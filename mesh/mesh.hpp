@@ -13,9 +13,10 @@ namespace cushion::mesh {
 
 using Vec3 = Eigen::Vector3d;
 
-/// Element types. Node order follows ABAQUS: hex8 = C3D8 (bottom face 1-2-3-4 counter-clockwise seen
-/// from outside... i.e. nodes 1-4 at zeta = -1, 5-8 at zeta = +1), tet4 = C3D4, tet10 = C3D10
-/// (corners 1-4, then mid-edge nodes 1-2, 2-3, 3-1, 1-4, 2-4, 3-4).
+/// Element types. Node order follows ABAQUS: hex8 = C3D8, nodes 1-4 on the bottom face (zeta = -1)
+/// and 5-8 on the top face (zeta = +1), each face counter-clockwise seen from +zeta, node 4+i above
+/// node i; tet4 = C3D4 with (x2-x1) x (x3-x1) . (x4-x1) > 0; tet10 = C3D10 (corners 1-4, then
+/// mid-edge nodes 1-2, 2-3, 3-1, 1-4, 2-4, 3-4).
 enum class ElementType { hex8, tet4, tet10 };
 int nodes_per_element(ElementType type);
 int faces_per_element(ElementType type);
@@ -47,6 +48,27 @@ struct Mesh {
 
 /// Local node indices (0-based, into Element::nodes) of face `face` of an element type; corner
 /// nodes first (for tet10 faces: 3 corners then 3 mid-edge nodes), ordered so the normal points out.
+/// Faces are numbered as ABAQUS S1..S6 / S1..S4 (same node sets as the ABAQUS face tables), but the
+/// ABAQUS tables list the nodes clockwise seen from outside; here the order is reversed (first node
+/// kept): hex8 S1 = 1-4-3-2, S2 = 5-6-7-8, S3 = 1-2-6-5, S4 = 2-3-7-6, S5 = 3-4-8-7, S6 = 4-1-5-8;
+/// tets S1 = 1-3-2, S2 = 1-2-4, S3 = 2-3-4, S4 = 3-1-4 (right-hand rule gives the outward normal).
 std::vector<int> face_nodes(ElementType type, int face);
+
+/// Faces (element, ABAQUS face number) that belong to exactly one element: the exterior boundary.
+/// Faces are matched by their corner nodes; sorted by element then face.
+std::vector<Face> boundary_faces(const Mesh& mesh);
+
+/// Volume of element `e` in the reference configuration [mm^3], integrated exactly for straight
+/// or curved hex8/tet4/tet10 geometry (det J by Gauss quadrature of sufficient order).
+double element_volume(const Mesh& mesh, int e);
+
+/// Smallest det(dX/dxi) over the corner nodes of element `e` (reference coordinates xi of
+/// ABAQUS: hex [-1,1]^3, tet unit simplex) [mm^3 per unit reference volume].
+double min_corner_jacobian(const Mesh& mesh, int e);
+
+/// Throws cushion::InputError naming the first element (by label) whose corner Jacobian is not
+/// positive (inverted or degenerate element) or that references a missing node; `where` prefixes
+/// the message (e.g. the file name).
+void check_elements(const Mesh& mesh, const std::string& where = "mesh");
 
 }  // namespace cushion::mesh

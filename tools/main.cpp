@@ -17,6 +17,10 @@ int main(int argc, char** argv) {
   CLI::App app{"cushion: visco-hyperelastic foam calibration and finite-element analysis"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "cushion 0.1.0");
+  // Argument errors on one line, like every other input error.
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return std::string("cushion: argument error: ") + e.what() + " (see cushion --help)\n";
+  });
   for (auto& [name, setup] : cushion::tools::registry()) setup(app);
   try {
     app.parse(argc, argv);

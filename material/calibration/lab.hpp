@@ -1,0 +1,106 @@
+#pragma once
+/// The virtual lab: runs the material-point model through the paper's test protocols in the time
+/// domain, "measures" like a test machine (sine fits for the dynamic test, a platen that only pushes),
+/// adds seeded noise, and writes a campaign (manifest JSON + CSV) in the calibration format.
+///
+/// Truth file (JSON; every key documented in the README "Virtual lab"):
+/// {
+///   "description": "...",                                   (optional)
+///   "material": "../materials/paper_table3.json",           (material file, relative to the truth file)
+///   "specimen": {"length_mm": 80, "width_mm": 80, "thickness_mm": 80, "density_kg_m3": 65},
+///   "noise": {"seed": 1, "force_relative": 0.005, "force_floor_N": 0.02},   (optional; default none)
+///   "quasi_static": [{"name": "qs_120", "rate_mm_min": 120, "max_strain": 0.75, "hold_s": 2,
+///                     "sample_hz": 10, "preload_cycle": true, "rest_s": 300, "lateral": "free",
+///                     "use": "calibration"}],
+///   "dynamic": [{"name": "dyn_25", "preload_strain": 0.25, "preload_rate_mm_min": 30,
+///                "acceleration_amplitude_m_s2": 0.25, "amplitude_is": "peak_to_peak",
+///                "frequencies_Hz": [1, 2, ..., 20], "cycles": 20, "fit_cycles": 10,
+///                "steps_per_cycle": 64, "use": "calibration"}]
+/// }
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "material/io/material_file.hpp"
+#include "material/point_driver.hpp"
+
+namespace cushion::calibration {
+
+struct LabSpecimen {
+  double length = 80.0, width = 80.0, thickness = 80.0;  ///< [mm]
+  double density_kg_m3 = 65.0;                           ///< as written to the manifest
+  double area() const { return length * width; }       ///< loaded area [mm^2]
+};
+
+struct LabNoise {
+  unsigned long long seed = 1;
+  double force_relative = 0.0;  ///< standard deviation as a fraction of the force reading [-]
+  double force_floor = 0.0;     ///< additional absolute standard deviation [N]
+};
+
+/// Quasi-static load/unload protocol (ISO 2439 method E style, paper section 2.2).
+struct QuasiStaticProtocol {
+  std::string name = "quasistatic";
+  double rate_mm_min = 120.0;  ///< crosshead speed, loading and unloading
+  double max_strain = 0.75;    ///< nominal compression at the turn [-]
+  double hold_s = 2.0;         ///< hold at the maximum [s]
+  double sample_hz = 10.0;     ///< recorded samples per second
+  bool preload_cycle = true;   ///< a preflex to 60 mm and back at the same rate, then rest
+  double rest_s = 300.0;       ///< rest after the preload cycle [s]
+  material::LoadMode lateral = material::LoadMode::uniaxial_free;
+  std::string use;             ///< "calibration", "validation" or empty (manifest default)
+};
+
+/// Dynamic test protocol (paper section 2.3): preload, then sines at each frequency.
+struct DynamicProtocol {
+  std::string name = "dynamic";
+  double preload_strain = 0.25;        ///< nominal compression [-]
+  double preload_rate_mm_min = 30.0;
+  double acceleration_amplitude = 0.25;  ///< [m/s^2]
+  bool amplitude_peak_to_peak = true;    ///< the paper writes "peak-to-peak value of 0.25 m/s^2"
+  std::vector<double> frequencies_Hz;
+  int cycles = 20;           ///< cycles run at each frequency
+  int fit_cycles = 10;       ///< last cycles used by the sine fit
+  int steps_per_cycle = 64;
+  std::string use;
+  /// Displacement amplitude [mm] at frequency f: U = a_peak / (2 pi f)^2.
+  double displacement_amplitude_mm(double f_Hz) const;
+};
+
+struct LabTruth {
+  std::string description;
+  std::filesystem::path material_file;
+  LabSpecimen specimen;
+  LabNoise noise;
+  std::vector<QuasiStaticProtocol> quasi_static;
+  std::vector<DynamicProtocol> dynamic;
+};
+
+/// Reads and validates a truth file (InputError naming the file and key).
+LabTruth read_lab_truth(const std::filesystem::path& file);
+
+/// A recorded quasi-static test: compression-positive displacement and force, as a machine writes them.
+struct QuasiStaticRecord {
+  std::vector<double> time_s, displacement_mm, force_N;
+};
+/// A measured dynamic test: complex modulus per frequency (nominal stress over nominal strain).
+struct DynamicRecord {
+  std::vector<double> frequency_Hz, dynamic_modulus_kPa, phase_deg;
+};
+
+/// Runs one quasi-static protocol on the material (no noise).
+QuasiStaticRecord run_quasi_static(const material::Material& model, const LabSpecimen& specimen,
+                                   const QuasiStaticProtocol& protocol);
+/// Runs one dynamic protocol; noise (if any) is added to the force samples before the sine fit.
+DynamicRecord run_dynamic(const material::Material& model, const LabSpecimen& specimen,
+                          const DynamicProtocol& protocol, const LabNoise& noise, unsigned long long stream);
+
+/// Adds seeded Gaussian noise to a quasi-static record's force (portable Box-Muller on mt19937_64).
+void add_force_noise(QuasiStaticRecord& record, const LabNoise& noise, unsigned long long stream);
+
+/// Runs every protocol of the truth and writes DIR/campaign.json plus one CSV per test; prints one
+/// line per test to `log`. Outputs are written to a temporary folder and renamed at the end, so a
+/// failure leaves no partial campaign.
+void run_lab(const LabTruth& truth, const std::filesystem::path& out_dir, std::ostream& log);
+
+}  // namespace cushion::calibration

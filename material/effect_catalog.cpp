@@ -1,0 +1,204 @@
+#include "material/effect_catalog.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <set>
+#include <sstream>
+
+#include "material/effect_friction.hpp"
+#include "material/effect_mullins.hpp"
+#include "material/effect_pneumatic.hpp"
+#include "material/effect_stiffness_damping.hpp"
+#include "material/effect_strain_dependent_prony.hpp"
+#include "material/input_error.hpp"
+#include "material/viscoelastic.hpp"
+
+namespace cushion::material {
+
+namespace {
+
+constexpr double kPa = 1e-3;  // MPa per kPa
+constexpr double Pa = 1e-6;   // MPa per Pa
+
+/// What a builder gets: the model to wrap, the reference elastic base, and the parameter values
+/// in file units (every catalogue parameter present, defaults filled in).
+struct BuildContext {
+  std::shared_ptr<const Material> inner;
+  std::shared_ptr<const Hyperelastic> reference_base;
+  std::map<std::string, double> value;
+};
+using Builder = std::function<std::shared_ptr<const Material>(const BuildContext&)>;
+
+struct Entry {
+  EffectInfo info;
+  Builder build;
+};
+
+const std::vector<Entry>& entries() {
+  static const std::vector<Entry> table = {
+      {{"pneumatic",
+        "air-flow (Darcy) damping through open cells: lumped extra pressure eta R^2/(8K(J)) (-dJ/dt)/J, "
+        "size-dependent through R",
+        {{"drainage_length_mm", "R: lateral drainage path, half the specimen width (case-dependent)", 40.0, 0.0, 1e4,
+          true, false, false},
+         {"permeability_mm2", "K0: permeability at J = 1 (1e-3 mm^2 = 1e-9 m^2)", 1e-3, 1e-9, 1e3, false, true, true},
+         {"permeability_exponent", "n_K: K = K0 J^n_K, permeability falls with compression", 2.0, 0.0, 20.0, false,
+          true, false},
+         {"air_viscosity_Pa_s", "eta_air: dynamic viscosity of air", 1.8e-5, 0.0, 1.0, true, false, false}}},
+       [](const BuildContext& c) -> std::shared_ptr<const Material> {
+         PneumaticParameters p;
+         p.drainage_length = c.value.at("drainage_length_mm");
+         p.permeability = c.value.at("permeability_mm2");
+         p.permeability_exponent = c.value.at("permeability_exponent");
+         p.air_viscosity = c.value.at("air_viscosity_Pa_s") * Pa;
+         return std::make_shared<PneumaticEffect>(c.inner, p);
+       }},
+      {{"friction",
+        "rate-independent frictional hysteresis: elasto-plastic branch k (E - E_p), |S_f - h E_p| <= s_y, in parallel",
+        {{"stiffness_kPa", "k: elastic modulus of the branch", 10.0, 0.0, 1e5, true, true, true},
+         {"yield_stress_kPa", "s_y: sliding stress of the branch", 0.2, 0.0, 1e4, true, true, true},
+         {"hardening_kPa", "h: linear kinematic hardening modulus", 0.0, 0.0, 1e5, false, false, false}}},
+       [](const BuildContext& c) -> std::shared_ptr<const Material> {
+         FrictionParameters p;
+         p.stiffness = c.value.at("stiffness_kPa") * kPa;
+         p.yield_stress = c.value.at("yield_stress_kPa") * kPa;
+         p.hardening = c.value.at("hardening_kPa") * kPa;
+         return std::make_shared<FrictionEffect>(c.inner, p);
+       }},
+      {{"mullins",
+        "Ogden-Roxburgh softening S = eta S_inner, eta = 1 - erf((W_max - W)/(m + beta W_max))/r below the largest "
+        "energy reached",
+        {{"r", "r: maximum softening 1/r", 2.0, 1.0, 1e3, true, true, true},
+         {"m_kPa", "m: energy scale of the softening (kPa = kJ/m^3)", 1.0, 0.0, 1e4, true, true, true},
+         {"beta", "beta: growth of the energy scale with W_max", 0.1, 0.0, 10.0, false, false, false}},
+        false,
+        true},
+       [](const BuildContext& c) -> std::shared_ptr<const Material> {
+         MullinsParameters p;
+         p.r = c.value.at("r");
+         p.m = c.value.at("m_kPa") * kPa;
+         p.beta = c.value.at("beta");
+         return std::make_shared<MullinsEffect>(c.inner, c.reference_base, p);
+       }},
+      {{"strain_dependent_prony",
+        "Prony moduli scaled by f(J) = J^-c with the compression level (a series fitted at one preload fails at "
+        "another)",
+        {{"coefficient_c", "c: f(J) = J^-c ~ 1 + c (-ln J)", 1.0, -10.0, 10.0, false, true, false}},
+        true},
+       [](const BuildContext& c) -> std::shared_ptr<const Material> {
+         return std::make_shared<StrainDependentPronyEffect>(std::dynamic_pointer_cast<const Viscoelastic>(c.inner),
+                                                             c.value.at("coefficient_c"));
+       }},
+      {{"stiffness_damping",
+        "stiffness-proportional (Rayleigh beta) damping beta_s C0 dE/dt, C0 = initial elastic tangent",
+        {{"beta_s", "beta_s: damping time (the paper's Rayleigh beta = 1e-4 s)", 1e-4, 0.0, 1.0, false, true, false}},
+        false,
+        true},
+       [](const BuildContext& c) -> std::shared_ptr<const Material> {
+         return std::make_shared<StiffnessDampingEffect>(c.inner, *c.reference_base, c.value.at("beta_s"));
+       }},
+  };
+  return table;
+}
+
+const Entry* find_entry(const std::string& kind) {
+  for (const Entry& e : entries())
+    if (e.info.kind == kind) return &e;
+  return nullptr;
+}
+
+std::string known_list(const std::vector<std::string>& names) {
+  std::string s;
+  for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+[[noreturn]] void fail(const std::string& source, std::size_t index, const std::string& key, const std::string& problem) {
+  std::ostringstream o;
+  o << source << ": effects[" << index << "]" << (key.empty() ? "" : "." + key) << ": " << problem;
+  throw InputError(o.str());
+}
+
+std::string range_text(const EffectParameterInfo& p) {
+  std::ostringstream o;
+  o << "must be " << (p.min_exclusive ? "> " : ">= ") << p.min << " and <= " << p.max;
+  return o.str();
+}
+
+/// The reference elastic base: the long-term base of a Viscoelastic model, else the elastic base
+/// (or the model itself when it is elastic). Null when none exists.
+std::shared_ptr<const Hyperelastic> reference_base(const std::shared_ptr<const Material>& model,
+                                                   const std::shared_ptr<const Hyperelastic>& elastic_base) {
+  if (const auto* visco = dynamic_cast<const Viscoelastic*>(model.get()))
+    return std::shared_ptr<const Hyperelastic>(model, &visco->long_term_base());  // aliasing: keeps the model alive
+  if (elastic_base) return elastic_base;
+  return std::dynamic_pointer_cast<const Hyperelastic>(model);
+}
+
+}  // namespace
+
+const std::vector<EffectInfo>& effect_catalog() {
+  static const std::vector<EffectInfo> infos = [] {
+    std::vector<EffectInfo> v;
+    for (const Entry& e : entries()) v.push_back(e.info);
+    return v;
+  }();
+  return infos;
+}
+
+const EffectInfo* find_effect(const std::string& kind) {
+  for (const EffectInfo& e : effect_catalog())
+    if (e.kind == kind) return &e;
+  return nullptr;
+}
+
+void validate_effects(const std::vector<EffectSpec>& effects, const std::string& source) {
+  std::set<std::string> seen;
+  for (std::size_t i = 0; i < effects.size(); ++i) {
+    const EffectSpec& spec = effects[i];
+    const EffectInfo* info = find_effect(spec.kind);
+    if (!info) {
+      std::vector<std::string> kinds;
+      for (const EffectInfo& e : effect_catalog()) kinds.push_back(e.kind);
+      fail(source, i, "kind", "unknown effect kind '" + spec.kind + "' (known: " + known_list(kinds) + ")");
+    }
+    if (!seen.insert(spec.kind).second) fail(source, i, "kind", "effect '" + spec.kind + "' is listed twice");
+    std::vector<std::string> names;
+    for (const EffectParameterInfo& p : info->parameters) names.push_back(p.name);
+    for (const auto& [name, value] : spec.parameters) {
+      const auto it = std::find_if(info->parameters.begin(), info->parameters.end(),
+                                   [&](const EffectParameterInfo& p) { return p.name == name; });
+      if (it == info->parameters.end())
+        fail(source, i, name, "unknown parameter of '" + spec.kind + "' (known: " + known_list(names) + ")");
+      const bool above = it->min_exclusive ? value > it->min : value >= it->min;
+      if (!std::isfinite(value) || !above || !(value <= it->max)) fail(source, i, name, range_text(*it));
+    }
+  }
+}
+
+std::shared_ptr<const Material> apply_effects(std::shared_ptr<const Material> base_model,
+                                              std::shared_ptr<const Hyperelastic> elastic_base,
+                                              const std::vector<EffectSpec>& effects, const std::string& source) {
+  if (!base_model) throw InputError(source + ": effects: no base material");
+  validate_effects(effects, source);
+  const std::shared_ptr<const Hyperelastic> reference = reference_base(base_model, elastic_base);
+  std::shared_ptr<const Material> model = base_model;
+  for (std::size_t i = 0; i < effects.size(); ++i) {
+    const Entry& entry = *find_entry(effects[i].kind);
+    if (entry.info.needs_viscoelastic && !dynamic_cast<const Viscoelastic*>(model.get()))
+      fail(source, i, "kind",
+           "'" + entry.info.kind + "' needs a viscoelastic (Prony) material and must be the first effect");
+    if (!reference && entry.info.needs_elastic_base)
+      fail(source, i, "kind", "'" + entry.info.kind + "' needs an elastic base material");
+    BuildContext context{model, reference, {}};
+    for (const EffectParameterInfo& p : entry.info.parameters) {
+      const auto it = effects[i].parameters.find(p.name);
+      context.value[p.name] = it == effects[i].parameters.end() ? p.default_value : it->second;
+    }
+    model = entry.build(context);
+  }
+  return model;
+}
+
+}  // namespace cushion::material

@@ -1,0 +1,73 @@
+#pragma once
+/// The catalogue of optional physical effects (all off unless listed) and the one function that
+/// stacks them on a material. Generic by design: the `diagnose` command enumerates effect_catalog(),
+/// builds candidate lists of EffectSpec from the defaults and bounds, and refits the parameters
+/// marked `fit` without knowing any effect by name. Material files list them as
+///   "effects": [{"kind": "pneumatic", "drainage_length_mm": 40, "permeability_mm2": 1e-3}, ...]
+/// (parameter keys carry their units; omitted parameters take their defaults).
+///
+/// Effects (material/effect_*.hpp for the equations):
+///   pneumatic               air-flow (Darcy) damping, lumped, size-dependent through R
+///   friction                rate-independent frictional hysteresis (elasto-plastic parallel branch)
+///   mullins                 Ogden-Roxburgh softening below the largest energy reached
+///   strain_dependent_prony  Prony moduli scaled by J^{-c} (needs a viscoelastic material; first in the list)
+///   stiffness_damping       Rayleigh-beta damping beta_s C0 dE/dt at material level
+/// The "reference elastic base" of mullins (energy W) and stiffness_damping (C0 at F = I) is the
+/// LONG-TERM base when the base model is Viscoelastic, else the elastic base.
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "material/hyperelastic.hpp"
+
+namespace cushion::material {
+
+/// One effect as written in a material file: its kind and named parameters in FILE units (the
+/// unit is part of the name: "_mm", "_mm2", "_kPa", "_Pa_s", "_s"; no suffix: dimensionless).
+struct EffectSpec {
+  std::string kind;
+  std::map<std::string, double> parameters;  ///< omitted parameters take the catalogue default
+};
+
+/// One parameter of an effect, in file units.
+struct EffectParameterInfo {
+  std::string name;          ///< key with its unit, e.g. "permeability_mm2"
+  std::string description;   ///< one line
+  double default_value = 0;  ///< [file unit]
+  double min = 0, max = 0;   ///< admissible range [file unit]
+  bool min_exclusive = false;///< true: value > min; false: value >= min (max is always inclusive)
+  bool fit = true;           ///< refitted by diagnose by default (false: case or physical constant)
+  bool log_scale = false;    ///< positive and spanning decades: fit its logarithm
+};
+
+/// One effect of the catalogue.
+struct EffectInfo {
+  std::string kind;
+  std::string description;  ///< one line
+  std::vector<EffectParameterInfo> parameters;
+  bool needs_viscoelastic = false;   ///< only on a Viscoelastic base model, as the first effect
+  bool needs_elastic_base = false;   ///< uses the reference elastic base (energy or initial tangent)
+};
+
+/// Every effect, in a fixed order.
+const std::vector<EffectInfo>& effect_catalog();
+
+/// The catalogue entry of `kind`, or nullptr.
+const EffectInfo* find_effect(const std::string& kind);
+
+/// Checks kinds, parameter names and ranges, and duplicates. Throws InputError
+/// "<source>: effects[i].<parameter>: <problem>" (or "effects[i].kind" for an unknown kind).
+void validate_effects(const std::vector<EffectSpec>& effects, const std::string& source = "material");
+
+/// Validates, then wraps `base_model` in the effects in list order (the first effect is innermost).
+/// elastic_base: the elastic base of the material (may be null when base_model is itself elastic);
+/// see "reference elastic base" above. Returns base_model itself for an empty list. Throws
+/// InputError as validate_effects, and when strain_dependent_prony is not first or the model is not
+/// viscoelastic, or no elastic base is available for mullins/stiffness_damping.
+std::shared_ptr<const Material> apply_effects(std::shared_ptr<const Material> base_model,
+                                              std::shared_ptr<const Hyperelastic> elastic_base,
+                                              const std::vector<EffectSpec>& effects,
+                                              const std::string& source = "material");
+
+}  // namespace cushion::material

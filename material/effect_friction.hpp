@@ -1,0 +1,46 @@
+#pragma once
+/// Rate-independent frictional hysteresis (cell walls sliding on each other) as an elasto-plastic
+/// branch IN PARALLEL with the inner model, small-strain plasticity written on the Green-Lagrange
+/// strain E (reference frame, tensor components):
+///   S_f = k (E - E_p),  back stress X = h E_p (linear kinematic hardening, h = 0: perfectly plastic),
+///   yield  f = |S_f - X| - s_y <= 0  on the FULL tensor (Frobenius norm; foam cells slide in
+///   volumetric compression too, so no deviatoric split),
+///   flow   dE_p = dgamma N, N = (S_f - X)/|S_f - X|  (associative),
+/// integrated by radial return (exact for this linear model):
+///   xi_tr = k (E - E_p^n) - h E_p^n, dgamma = (|xi_tr| - s_y)/(k + h), E_p = E_p^n + dgamma N,
+/// consistent tangent dS_f/dE = k I - k^2/(k+h) N (x) N - k^2 dgamma/|xi_tr| (I - N (x) N).
+/// In 1D (only E11 non-zero) a strain cycle of amplitude e_a > e_y = s_y/k dissipates the loop area
+/// 4 s_y (k e_a - s_y)/(k + h) per cycle, independent of the rate: the loss per cycle does not vanish
+/// at slow rates and does not depend on frequency (unlike Prony or pneumatic damping).
+/// Own state: E_p (6 doubles, tensor components in Voigt order [11, 22, 33, 12, 23, 13]).
+/// complex_tangent: NOT a linear effect. It returns the inner complex tangent plus the elastic
+/// branch k I, i.e. the tangent for amplitudes inside the elastic range (|S_f - X| < s_y) about
+/// any unloaded/virgin state; finite-amplitude loss (the loop above) is not represented there.
+#include "material/effect_decorator.hpp"
+
+namespace cushion::material {
+
+/// Parameters in internal units (MPa).
+struct FrictionParameters {
+  double stiffness = 0.01;      ///< k [MPa], > 0: elastic modulus of the branch (S_f = k E before sliding)
+  double yield_stress = 2e-4;   ///< s_y [MPa], > 0: radius of the elastic range in |S_f - X|
+  double hardening = 0.0;       ///< h [MPa], >= 0: linear kinematic hardening modulus
+};
+
+class FrictionEffect final : public EffectDecorator {
+ public:
+  /// Throws std::invalid_argument on parameters outside the ranges above.
+  FrictionEffect(std::shared_ptr<const Material> inner, FrictionParameters parameters);
+
+  PointResponse integrate(const Mat3& F_old, const Mat3& F_new, double dt, std::span<const double> state_old,
+                          std::span<double> state_new) const override;
+  Mat6c complex_tangent(const Mat3& F_base, double omega) const override;
+  std::string describe() const override;
+
+  const FrictionParameters& parameters() const { return p_; }
+
+ private:
+  FrictionParameters p_;
+};
+
+}  // namespace cushion::material

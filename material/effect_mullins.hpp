@@ -1,0 +1,51 @@
+#pragma once
+/// Ogden-Roxburgh stress softening (Mullins effect; ABAQUS "foam energy dissipation" form, physics.md
+/// 5.2, where the damage variable scales the whole stress):
+///   S = eta S_inner,  eta = 1 - (1/r) erf((W_max - W) / (m + beta W_max)),
+/// W: strain energy of the ELASTIC BASE at F (the long-term base when the inner model is viscoelastic),
+/// W_max: largest W reached so far (own state, 1 double). On first loading W = W_max and eta = 1
+/// (the base response is unchanged); below W_max (unloading, reloading) eta < 1, so the stress is
+/// lower than on first loading. Unloading and reloading follow the SAME curve (no hysteresis below
+/// W_max): the effect dissipates only when W_max grows. Tangent (unsymmetric):
+///   dS/dE = eta C_inner + S_inner (x) deta/dE,  deta/dE = (2 / (r sqrt(pi) (m + beta W_max))) e^{-z^2} S_base,
+/// z = (W_max - W)/(m + beta W_max), S_base = dW/dE; deta/dE = 0 while loading (W >= W_max^n).
+/// complex_tangent: NOT a linear effect. It returns the tangent of the preconditioned (shaken-down)
+/// state at W_max = W(F_base) approached from below, i.e. the reversible tangent that a small
+/// vibration about a held preload sees after its first cycle:
+///   C* = C*_inner + (2 / (r sqrt(pi) (m + beta W_b))) S_base (x) S_base   (real: no loss),
+/// with S_inner at the relaxed base taken as the base stress S_base (exact when the inner model
+/// relaxes to the base: hyperelastic or viscoelastic inner).
+#include "material/effect_decorator.hpp"
+#include "material/hyperelastic.hpp"
+
+namespace cushion::material {
+
+/// Parameters in internal units (MPa).
+struct MullinsParameters {
+  double r = 2.0;     ///< r [-], > 1: eta >= 1 - 1/r (maximum softening 1/r)
+  double m = 1e-3;    ///< m [MPa], > 0: energy scale of the softening
+  double beta = 0.1;  ///< beta [-], >= 0: growth of the energy scale with W_max
+};
+
+class MullinsEffect final : public EffectDecorator {
+ public:
+  /// energy_base: the elastic model whose energy drives the softening (not null). Throws
+  /// std::invalid_argument on parameters outside the ranges above.
+  MullinsEffect(std::shared_ptr<const Material> inner, std::shared_ptr<const Hyperelastic> energy_base,
+                MullinsParameters parameters);
+
+  PointResponse integrate(const Mat3& F_old, const Mat3& F_new, double dt, std::span<const double> state_old,
+                          std::span<double> state_new) const override;
+  Mat6c complex_tangent(const Mat3& F_base, double omega) const override;
+  std::string describe() const override;
+
+  /// Softening factor eta [-] at base energy W with maximum W_max [MPa].
+  double eta(double W, double W_max) const;
+  const MullinsParameters& parameters() const { return p_; }
+
+ private:
+  std::shared_ptr<const Hyperelastic> energy_base_;
+  MullinsParameters p_;
+};
+
+}  // namespace cushion::material

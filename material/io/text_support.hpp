@@ -1,0 +1,27 @@
+#pragma once
+/// Small text helpers shared by the file readers and writers of cushion (CSV, material, protocol).
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace cushion::io {
+
+/// The known name closest to `word` (case-insensitive edit distance), or "" when none is close
+/// enough to be a plausible misspelling (distance > max(2, |word|/3)).
+std::string closest_name(const std::string& word, const std::vector<std::string>& known);
+
+/// " (did you mean 'x'?)" for the closest known name, or "" when there is none.
+std::string did_you_mean(const std::string& word, const std::vector<std::string>& known);
+
+/// Writes `content` to `file` atomically: into a temporary file in the same folder, then renamed
+/// over `file`, so a reader never sees a half-written file. Creates missing parent folders.
+/// Throws InputError naming the file when it cannot be written.
+void write_file_atomically(const std::filesystem::path& file, const std::string& content);
+
+/// The items separated by `separator`.
+std::string join(const std::vector<std::string>& items, const std::string& separator);
+
+/// Shortest decimal text that reads back to exactly `x` (std::to_chars round trip).
+std::string format_double(double x);
+
+}  // namespace cushion::io

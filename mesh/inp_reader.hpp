@@ -1,0 +1,32 @@
+#pragma once
+/// ABAQUS/CalculiX .inp mesh input and output. Supported keywords: *NODE (NSET=), *ELEMENT
+/// (TYPE=C3D8, C3D8R, C3D4, C3D10; ELSET=), *NSET / *ELSET (NSET= / ELSET=, GENERATE, members by
+/// label or set name, *NSET with ELSET= taking the nodes of an element set), *SURFACE (TYPE=ELEMENT,
+/// NAME=; lines "elset or label, Sn", Sn omitted = exterior faces of the set), *INCLUDE (INPUT=, path
+/// relative to the including file). Other keywords (*HEADING, *MATERIAL, *STEP ...) are skipped
+/// with a note. Coordinates are taken as mm. Node/element labels become 0-based indices.
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "mesh/mesh.hpp"
+
+namespace cushion::mesh {
+
+/// Reads an .inp file. Errors throw cushion::InputError "file:line: *KEYWORD: message" (bad number,
+/// unknown element TYPE, undefined or duplicate label, bad GENERATE, empty set, unknown set ...).
+/// Notes on skipped keywords and reinterpreted element types go to `notes` if given. The element
+/// Jacobians are checked (check_elements).
+Mesh read_inp(const std::string& path, std::vector<std::string>* notes = nullptr);
+
+/// Same as read_inp for deck text in memory; `name` is used in messages and *INCLUDE paths are
+/// relative to its directory.
+Mesh parse_inp(const std::string& text, const std::string& name,
+               std::vector<std::string>* notes = nullptr);
+
+/// Writes nodes, elements (grouped by type), node sets, element sets and element surfaces with the
+/// mesh's labels, full double precision, at most 16 entries per data line.
+void write_inp(const Mesh& mesh, std::ostream& out);
+void write_inp(const Mesh& mesh, const std::string& path);
+
+}  // namespace cushion::mesh

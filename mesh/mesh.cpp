@@ -1,0 +1,126 @@
+#include "mesh/mesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "material/input_error.hpp"
+#include "mesh/shape.hpp"
+
+namespace cushion::mesh {
+
+int nodes_per_element(ElementType type) {
+  switch (type) {
+    case ElementType::hex8: return 8;
+    case ElementType::tet4: return 4;
+    case ElementType::tet10: return 10;
+  }
+  throw std::logic_error("nodes_per_element: unknown element type");
+}
+
+int faces_per_element(ElementType type) { return type == ElementType::hex8 ? 6 : 4; }
+
+std::string to_string(ElementType type) {
+  switch (type) {
+    case ElementType::hex8: return "C3D8";
+    case ElementType::tet4: return "C3D4";
+    case ElementType::tet10: return "C3D10";
+  }
+  throw std::logic_error("to_string: unknown element type");
+}
+
+std::vector<int> face_nodes(ElementType type, int face) {
+  // ABAQUS face tables (S1..S6 / S1..S4) with the node order reversed after the first node so that
+  // the right-hand rule gives the outward normal; see mesh.hpp.
+  static const std::vector<std::vector<int>> hex = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                                                    {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  static const std::vector<std::vector<int>> tet10 = {
+      {0, 2, 1, 6, 5, 4}, {0, 1, 3, 4, 8, 7}, {1, 2, 3, 5, 9, 8}, {2, 0, 3, 6, 7, 9}};
+  if (face < 0 || face >= faces_per_element(type))
+    throw std::out_of_range("face_nodes: face " + std::to_string(face) + " out of range for " +
+                            to_string(type));
+  if (type == ElementType::hex8) return hex[face];
+  if (type == ElementType::tet10) return tet10[face];
+  const auto& f = tet10[face];
+  return {f[0], f[1], f[2]};
+}
+
+std::vector<Face> boundary_faces(const Mesh& mesh) {
+  // Key: sorted global corner nodes of a face (padded for triangles); value: first owner and count.
+  struct Seen {
+    Face face;
+    int count = 0;
+  };
+  std::map<std::array<int, 4>, Seen> faces;
+  for (int e = 0; e < static_cast<int>(mesh.elements.size()); ++e) {
+    const Element& element = mesh.elements[e];
+    for (int f = 0; f < faces_per_element(element.type); ++f) {
+      const std::vector<int> local = face_nodes(element.type, f);
+      const int corners = element.type == ElementType::hex8 ? 4 : 3;
+      constexpr int kPad = std::numeric_limits<int>::max();
+      std::array<int, 4> key{kPad, kPad, kPad, kPad};
+      for (int k = 0; k < corners; ++k) key[k] = element.nodes[local[k]];
+      std::sort(key.begin(), key.end());
+      Seen& seen = faces[key];
+      if (seen.count++ == 0) seen.face = Face{e, f};
+    }
+  }
+  std::vector<Face> result;
+  for (const auto& [key, seen] : faces)
+    if (seen.count == 1) result.push_back(seen.face);
+  std::sort(result.begin(), result.end(), [](const Face& a, const Face& b) {
+    return a.element != b.element ? a.element < b.element : a.face < b.face;
+  });
+  return result;
+}
+
+double element_volume(const Mesh& mesh, int e) {
+  const ElementType type = mesh.elements.at(e).type;
+  double volume = 0.0;
+  if (type == ElementType::hex8) {
+    // det J of a trilinear map has degree <= 2 per direction: 2x2x2 Gauss is exact.
+    const double g = 1.0 / std::sqrt(3.0);
+    for (double a : {-g, g})
+      for (double b : {-g, g})
+        for (double c : {-g, g}) volume += reference_jacobian(mesh, e, Vec3(a, b, c)).determinant();
+    return volume;
+  }
+  if (type == ElementType::tet4)
+    return reference_jacobian(mesh, e, Vec3(0.25, 0.25, 0.25)).determinant() / 6.0;
+  // tet10: det J is a cubic polynomial; the 5-point degree-3 rule (Keast) integrates it exactly.
+  volume = -0.8 * reference_jacobian(mesh, e, Vec3(0.25, 0.25, 0.25)).determinant();
+  const double p = 1.0 / 6.0, q = 0.5;
+  for (const Vec3& xi : {Vec3(p, p, p), Vec3(q, p, p), Vec3(p, q, p), Vec3(p, p, q)})
+    volume += 0.45 * reference_jacobian(mesh, e, xi).determinant();
+  return volume / 6.0;
+}
+
+double min_corner_jacobian(const Mesh& mesh, int e) {
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const Vec3& xi : corner_coordinates(mesh.elements.at(e).type))
+    smallest = std::min(smallest, reference_jacobian(mesh, e, xi).determinant());
+  return smallest;
+}
+
+void check_elements(const Mesh& mesh, const std::string& where) {
+  const int n_nodes = static_cast<int>(mesh.nodes.size());
+  for (int e = 0; e < static_cast<int>(mesh.elements.size()); ++e) {
+    const Element& element = mesh.elements[e];
+    const std::string name = where + ": element " + std::to_string(element.label) + " (" +
+                             to_string(element.type) + ")";
+    for (int a = 0; a < nodes_per_element(element.type); ++a)
+      if (element.nodes[a] < 0 || element.nodes[a] >= n_nodes)
+        throw InputError(name + ": node index " + std::to_string(element.nodes[a]) +
+                         " out of range");
+    // Scale-free test: det J relative to the cube of a typical edge length.
+    const Vec3 span = mesh.nodes[element.nodes[0]] - mesh.nodes[element.nodes[1]];
+    const double scale = std::pow(span.norm(), 3);
+    const double detJ = min_corner_jacobian(mesh, e);
+    if (!(detJ > 1e-12 * scale))
+      throw InputError(name + ": non-positive Jacobian det(dX/dxi) = " + std::to_string(detJ) +
+                       " mm^3 at a corner (inverted, degenerate or wrongly ordered nodes)");
+  }
+}
+
+}  // namespace cushion::mesh

@@ -1,0 +1,104 @@
+#include "solver/analysis/analysis_output.hpp"
+
+#include <algorithm>
+
+#include "material/viscoelastic.hpp"
+
+namespace cushion::solver {
+
+namespace {
+
+/// Frobenius norm of the viscous part of the Cauchy stress at one point [MPa].
+double viscous_norm(const material::Material* m, const PointOutput& p) {
+  const auto* visco = dynamic_cast<const material::Viscoelastic*>(m);
+  if (!visco) return 0.0;
+  const Vec6 S_inf = visco->long_term_base().evaluate(p.F).S;
+  return cauchy_from_pk2(p.F, from_voigt_stress(p.S - S_inf)).norm();
+}
+
+}  // namespace
+
+FrameData make_frame(double time, const Assembler& assembler, const std::vector<PointOutput>& points,
+                     const Eigen::VectorXd& u, const Eigen::VectorXd& f_int) {
+  const mesh::Mesh& mesh = assembler.mesh();
+  const DofMap& dofs = assembler.dofs();
+  FrameData frame;
+  frame.time = time;
+  frame.displacement.resize(mesh.num_nodes());
+  frame.reaction_force.assign(mesh.num_nodes(), Vec3::Zero());
+  for (std::size_t a = 0; a < mesh.num_nodes(); ++a)
+    for (int c = 0; c < 3; ++c) {
+      const int d = DofMap::dof(static_cast<int>(a), c);
+      frame.displacement[a](c) = u(d);
+      if (dofs.is_constrained(d)) frame.reaction_force[a](c) = f_int(d);
+    }
+  const std::size_t ne = mesh.num_elements();
+  frame.cauchy_stress.assign(ne, Mat3::Zero());
+  frame.deformation_gradient.assign(ne, Mat3::Identity());
+  frame.viscous_stress_norm.assign(ne, 0.0);
+  for (std::size_t e = 0; e < ne; ++e) {
+    const int section = assembler.section_of(static_cast<int>(e));
+    if (section < 0) continue;  // element without material: zero stress, F = I
+    const material::Material* m = assembler.sections()[section].material.get();
+    const std::size_t first = assembler.point_offset(static_cast<int>(e));
+    const int n = num_points(mesh.elements[e].type);
+    Mat3 sigma = Mat3::Zero(), F = Mat3::Zero();
+    double visc = 0.0, V = 0.0;
+    for (int q = 0; q < n; ++q) {
+      const PointOutput& p = points[first + q];
+      sigma += p.dV0 * from_voigt_stress(p.sigma);
+      F += p.dV0 * p.F;
+      visc += p.dV0 * viscous_norm(m, p);
+      V += p.dV0;
+    }
+    frame.cauchy_stress[e] = sigma / V;
+    frame.deformation_gradient[e] = F / V;
+    frame.viscous_stress_norm[e] = visc / V;
+  }
+  return frame;
+}
+
+HistoryColumns::HistoryColumns(const CaseSpec& spec, const mesh::Mesh& mesh) {
+  for (const StepSpec& step : spec.steps)
+    for (const HistoryRequest& request : step.output.history)
+      for (HistoryQuantity q : request.quantities) {
+        const std::string name = history_column(request.set, q);
+        if (std::find(names_.begin(), names_.end(), name) != names_.end()) continue;
+        const int k = static_cast<int>(q);
+        names_.push_back(name);
+        columns_.push_back({&mesh.node_sets.at(request.set), k % 3, k >= 3});
+      }
+}
+
+std::vector<double> HistoryColumns::values(const Eigen::VectorXd& u, const Eigen::VectorXd& f_int,
+                                           const DofMap& dofs) const {
+  std::vector<double> out;
+  for (const Column& c : columns_) {
+    double sum = 0.0;
+    for (int node : *c.nodes) {
+      const int d = DofMap::dof(node, c.component);
+      sum += c.reaction ? (dofs.is_constrained(d) ? f_int(d) : 0.0) : u(d);
+    }
+    out.push_back(c.reaction ? sum : sum / static_cast<double>(c.nodes->size()));
+  }
+  return out;
+}
+
+AnalysisOutput::AnalysisOutput(const CaseSpec& spec, const mesh::Mesh& mesh, const std::filesystem::path& dir)
+    : mesh_(mesh), series_(dir, "results"), columns_(spec, mesh),
+      history_(dir / "history.csv", columns_.names(),
+               {"cushion run " + spec.file.string() + ": history per converged increment",
+                "U = mean displacement of the set [mm], RF = sum of reaction forces over the set [N]"}) {}
+
+void AnalysisOutput::write_frame(FrameData frame) {
+  series_.write_frame(mesh_, frame);
+  last_frame_time_ = frame.time;
+}
+
+void AnalysisOutput::write_history(double time, const Eigen::VectorXd& u, const Eigen::VectorXd& f_int,
+                                   const DofMap& dofs) {
+  const std::vector<double> values = columns_.values(u, f_int, dofs);
+  history_.write_row(time, values);
+}
+
+}  // namespace cushion::solver

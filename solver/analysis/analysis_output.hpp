@@ -1,0 +1,71 @@
+#pragma once
+/// Result output of an analysis: frames (.vtu per frame + results.pvd) and the history table
+/// (history.csv), built from converged states only. Every file is complete after every write
+/// (the writers rename temporary files and flush rows), so an interrupted or failed run leaves
+/// readable results up to its last converged frame.
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "solver/assembler.hpp"
+#include "solver/case/case_spec.hpp"
+#include "solver/output/frame_data.hpp"
+#include "solver/output/history_csv.hpp"
+#include "solver/output/vtu_writer.hpp"
+
+namespace cushion::solver {
+
+/// One frame from a converged state: displacements u [mm] (full), reaction forces [N] = f_int at
+/// the constrained DOFs of `assembler` (zero elsewhere), and per element the reference-volume
+/// average over its quadrature points (`points` from Assembler::assemble at u) of the Cauchy stress
+/// [MPa], of F [-] and of the Frobenius norm of the viscous Cauchy stress F (S - S_inf(F)) F^T / J
+/// [MPa] (S_inf: long-term base stress of a Viscoelastic material; 0 for elastic materials).
+FrameData make_frame(double time, const Assembler& assembler, const std::vector<PointOutput>& points,
+                     const Eigen::VectorXd& u, const Eigen::VectorXd& f_int);
+
+/// History values in the order of history_columns(spec): Ui = mean displacement of the set [mm],
+/// RFi = sum over the set of the reactions f_int at constrained DOFs [N] (0 where free).
+/// Every column is written at every increment (the sets exist in every step).
+class HistoryColumns {
+ public:
+  HistoryColumns(const CaseSpec& spec, const mesh::Mesh& mesh);
+  const std::vector<std::string>& names() const { return names_; }
+  std::vector<double> values(const Eigen::VectorXd& u, const Eigen::VectorXd& f_int, const DofMap& dofs) const;
+
+ private:
+  struct Column {
+    const std::vector<int>* nodes;
+    int component;
+    bool reaction;
+  };
+  std::vector<std::string> names_;
+  std::vector<Column> columns_;
+};
+
+/// Files of one run: <dir>/results.pvd + results_NNNN.vtu and <dir>/history.csv.
+class AnalysisOutput {
+ public:
+  /// Creates the folder and (truncates) the files. std::runtime_error if they cannot be written.
+  AnalysisOutput(const CaseSpec& spec, const mesh::Mesh& mesh, const std::filesystem::path& dir);
+
+  /// Writes a frame (see make_frame) plus extra arrays (e.g. from residual contributors).
+  void write_frame(FrameData frame);
+  /// Appends one history row at total time `time` [s].
+  void write_history(double time, const Eigen::VectorXd& u, const Eigen::VectorXd& f_int, const DofMap& dofs);
+
+  std::filesystem::path pvd_file() const { return series_.pvd_file(); }
+  std::filesystem::path history_file() const { return history_.file(); }
+  std::size_t frame_count() const { return series_.frame_count(); }
+  double last_frame_time() const { return last_frame_time_; }  ///< total time [s], -1 before any frame
+
+ private:
+  const mesh::Mesh& mesh_;
+  ResultSeries series_;
+  HistoryColumns columns_;
+  HistoryWriter history_;
+  double last_frame_time_ = -1.0;
+};
+
+}  // namespace cushion::solver

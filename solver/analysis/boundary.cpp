@@ -1,0 +1,52 @@
+#include "solver/analysis/boundary.hpp"
+
+#include "solver/dof_map.hpp"
+
+namespace cushion::solver {
+
+namespace {
+
+std::vector<int> condition_dofs(const mesh::Mesh& mesh, const BoundarySpec& bc) {
+  std::vector<int> dofs;
+  for (int node : mesh.node_sets.at(bc.set))
+    for (int c = 0; c < 3; ++c)
+      if (bc.dofs[c]) dofs.push_back(DofMap::dof(node, c));
+  return dofs;
+}
+
+}  // namespace
+
+std::vector<bool> constrained_mask(const mesh::Mesh& mesh, const StepSpec& step) {
+  std::vector<bool> mask(3 * mesh.num_nodes(), false);
+  for (const BoundarySpec& bc : step.boundary)
+    for (int d : condition_dofs(mesh, bc)) mask[d] = true;
+  return mask;
+}
+
+StepBoundary::StepBoundary(const mesh::Mesh& mesh, const StepSpec& step,
+                           const std::map<std::string, Amplitude>& amplitudes, double t_start,
+                           const Eigen::VectorXd& u_start)
+    : step_(step), amplitudes_(amplitudes), t_start_(t_start), u_start_(u_start) {
+  for (const BoundarySpec& bc : step.boundary) entries_.push_back({&bc, condition_dofs(mesh, bc)});
+}
+
+void StepBoundary::apply(double t_step, Eigen::VectorXd& u) const {
+  for (const Entry& e : entries_)
+    for (int d : e.dofs)
+      u(d) = prescribed_value(*e.bc, amplitudes_, u_start_(d), t_step, step_.period, t_start_);
+}
+
+std::vector<double> StepBoundary::corner_times() const {
+  std::vector<double> times;
+  for (const Entry& e : entries_) {
+    if (!e.bc->amplitude) continue;
+    const Amplitude& a = amplitudes_.at(*e.bc->amplitude);
+    for (double t : a.time) {
+      const double t_step = a.total_time ? t - t_start_ : t;
+      if (t_step > 0.0 && t_step < step_.period) times.push_back(t_step);
+    }
+  }
+  return times;
+}
+
+}  // namespace cushion::solver

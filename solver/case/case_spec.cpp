@@ -1,0 +1,48 @@
+#include "solver/case/case_spec.hpp"
+
+#include <algorithm>
+
+namespace cushion::solver {
+
+double Amplitude::at(double t) const {
+  if (t <= time.front()) return value.front();
+  if (t >= time.back()) return value.back();
+  const auto upper = std::upper_bound(time.begin(), time.end(), t);  // first time > t
+  const std::size_t i = static_cast<std::size_t>(upper - time.begin());
+  const double w = (t - time[i - 1]) / (time[i] - time[i - 1]);
+  return (1.0 - w) * value[i - 1] + w * value[i];
+}
+
+double prescribed_value(const BoundarySpec& bc, const std::map<std::string, Amplitude>& amplitudes,
+                        double start_value, double t_step, double period, double t_start) {
+  if (bc.kind != BoundarySpec::Kind::displacement) return 0.0;
+  if (bc.amplitude) {
+    const Amplitude& a = amplitudes.at(*bc.amplitude);
+    return bc.value * a.at(a.total_time ? t_start + t_step : t_step);
+  }
+  const double w = std::clamp(t_step / period, 0.0, 1.0);
+  return start_value + (bc.value - start_value) * w;
+}
+
+std::string to_string(HistoryQuantity q) {
+  static const char* names[] = {"U1", "U2", "U3", "RF1", "RF2", "RF3"};
+  return names[static_cast<int>(q)];
+}
+
+std::string history_column(const std::string& set, HistoryQuantity q) {
+  const bool force = static_cast<int>(q) >= 3;
+  return set + "." + to_string(q) + (force ? "_N" : "_mm");
+}
+
+std::vector<std::string> history_columns(const CaseSpec& spec) {
+  std::vector<std::string> columns;
+  for (const StepSpec& step : spec.steps)
+    for (const HistoryRequest& request : step.output.history)
+      for (HistoryQuantity q : request.quantities) {
+        const std::string name = history_column(request.set, q);
+        if (std::find(columns.begin(), columns.end(), name) == columns.end()) columns.push_back(name);
+      }
+  return columns;
+}
+
+}  // namespace cushion::solver

@@ -1,0 +1,195 @@
+#pragma once
+/// Case files: the plain structs a case file (JSON) is parsed into. Nothing is built here; the
+/// parser (case_file.hpp) has validated every value before a struct is returned. Internal units:
+/// mm, s (the file carries the unit in each key name: "_mm", "_s", "_mm3").
+///
+/// Case file reference (every key; "?" = optional, default after "="):
+/// {
+///   "description"?: "free text",
+///   "mesh": exactly one of
+///     {"generate": {"type": "hex8" | "tet4" | "tet10",          structured block (C3D8 / C3D4 / C3D10)
+///                   "box_mm": [x0, x1, y0, y1, z0, z1],        [mm], x0 < x1, y0 < y1, z0 < z1
+///                   "elements": [nx, ny, nz],                   integers >= 1 (tets: 6 per hex cell)
+///                   "grading"?: {"x"|"y"|"z": {"ratio": r, "focus_mm"?: f}}}}
+///                        ratio = h_last/h_first (geometric) or h_coarsest/h_finest (with focus_mm)
+///      {"inp": "mesh.inp"}                                      ABAQUS input file (nodes, elements, *NSET)
+///      {"stl": "part.stl", "max_volume_mm3": v,                 TetGen volume mesh of a closed STL [mm^3]
+///       "type"?: "tet4" | "tet10" = "tet4", "max_radius_edge"? = 1.5, "min_dihedral_deg"? = 0}
+///     plus "formulation"?: "full" | "fbar" = "full"              hex8 only (F-bar: de Souza Neto 1996)
+///   "material": {"file": "foam.json"}                           material file (material_file.hpp)
+///   "sets"?: {"name": "selector", ...}                           node sets by selector text, e.g.
+///            "z == 0", "x <= 1e-6", "box(x0,y0,z0, x1,y1,z1)", "all" (mesh/selectors.hpp) [mm]
+///   "amplitudes"?: {"name": {"time_s": [t0, t1, ...], "value": [a0, a1, ...],
+///                            "time"?: "step" | "total" = "step"}}
+///            piecewise linear in time, constant outside the table (ABAQUS *AMPLITUDE, TIME=STEP TIME)
+///   "steps": [ {                                                 run in order, total time accumulates
+///     "name": "load",
+///     "type": "static" | "visco",        static: rate-independent; visco: viscous relaxation in time
+///                                        ("steady_state" is reserved: "not supported yet")
+///     "long_term"?: false,               static only: fully relaxed (long-term) moduli (*STATIC, LONG TERM)
+///     "time_period_s": T,                > 0 [s]
+///     "increment"?: {"initial_s"? = T, "min_s"? = 1e-5 T, "max_s"? = T, "max_increments"? = 100},
+///                                        0 < min_s <= initial_s <= max_s, initial_s <= T
+///     "boundary": [                      the complete list for this step (nothing is inherited)
+///        {"set": "top", "dof": "x"|"y"|"z"|"xy"|"xz"|"yz"|"xyz", "value_mm": -60, "amplitude"?: "ramp"},
+///            prescribed displacement [mm] of every listed component, relative to the reference
+///            configuration. Without amplitude it ramps linearly over the step from the value at the
+///            end of the previous step (0 in the first step) to value_mm (ABAQUS default for
+///            displacements); with an amplitude it is value_mm * a(t).
+///        {"set": "sym_x", "type": "symmetry_x" | "symmetry_y" | "symmetry_z"}   u_x (u_y, u_z) = 0
+///        {"set": "base",  "type": "fixed"}                                     u = 0 (ENCASTRE)
+///     ],
+///     "contact"?: reserved ("not supported yet"),
+///     "output"?: {"frames_every_s": dt  |  "frame_every_increments": n   (default: every increment),
+///                 "history"?: [{"set": "top", "quantities": ["U3", "RF3", ...]}]}
+///        A frame (.vtu) is written at the chosen interval and always at the end of the step.
+///        History rows are written every converged increment; Ui = mean displacement of the set
+///        [mm], RFi = sum of reaction forces over the set [N]; columns "top.U3_mm", "top.RF3_N".
+///        The history columns of a run are the union over its steps, in order of first appearance.
+///   } ],
+///   "solver"?: {"threads"? = 0 (0: all cores), "linear_solver"? = "auto" | "cholmod" | "umfpack",
+///               "residual_tolerance"? = 0.005   max residual / time-averaged force (ABAQUS R_n)
+///               "correction_tolerance"? = 0.01  max correction / max increment of u (ABAQUS C_n)
+///               "max_iterations"? = 16, "max_cutbacks"? = 5,
+///               "cutback_factor"? = 0.25, "growth_factor"? = 1.5}
+/// }
+/// Paths are relative to the folder of the case file. Unknown keys, missing keys, wrong types,
+/// wrong units (e.g. "time_period_ms"), non-finite numbers and references to undefined sets or
+/// amplitudes raise cushion::InputError "case.json: steps[1].boundary[0].amplitude: ...".
+///
+/// Example (1/8 of an 80 mm cube compressed 60 mm at 2 mm/s):
+/// {
+///   "mesh": {"generate": {"type": "hex8", "box_mm": [0, 40, 0, 40, 0, 80], "elements": [4, 4, 8]}},
+///   "material": {"file": "../materials/paper_table3.json"},
+///   "sets": {"sym_x": "x == 0", "sym_y": "y == 0", "bottom": "z == 0", "top": "z == 80"},
+///   "steps": [{"name": "load", "type": "visco", "time_period_s": 30,
+///              "increment": {"initial_s": 0.5, "min_s": 1e-4, "max_s": 1},
+///              "boundary": [{"set": "sym_x", "type": "symmetry_x"}, {"set": "sym_y", "type": "symmetry_y"},
+///                           {"set": "bottom", "type": "symmetry_z"},
+///                           {"set": "top", "dof": "z", "value_mm": -60}],
+///              "output": {"frames_every_s": 1, "history": [{"set": "top", "quantities": ["U3", "RF3"]}]}}]
+/// }
+#include <array>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mesh/structured_hex.hpp"
+
+namespace cushion::solver {
+
+/// Structured block ("mesh.generate"). `type` may be tet10 (block built as tet4, then to_tet10).
+struct GenerateMeshSpec {
+  mesh::ElementType type = mesh::ElementType::hex8;
+  mesh::Vec3 low = mesh::Vec3::Zero();   ///< (x0, y0, z0) [mm]
+  mesh::Vec3 high = mesh::Vec3::Ones();  ///< (x1, y1, z1) [mm]
+  std::array<int, 3> elements{1, 1, 1};  ///< nx, ny, nz
+  std::array<mesh::AxisGrading, 3> grading{};
+};
+
+/// TetGen mesh of a closed STL surface ("mesh.stl").
+struct StlMeshSpec {
+  std::filesystem::path file;       ///< resolved against the case folder
+  double max_volume = 0.0;          ///< [mm^3]
+  bool quadratic = false;           ///< tet10 instead of tet4
+  double max_radius_edge = 1.5;     ///< [-], TetGen -q
+  double min_dihedral = 0.0;        ///< [deg]
+};
+
+enum class HexFormulation { full, fbar };
+
+struct MeshSpec {
+  enum class Source { generate, inp, stl } source = Source::generate;
+  GenerateMeshSpec generate;        ///< source == generate
+  std::filesystem::path inp_file;   ///< source == inp, resolved against the case folder
+  StlMeshSpec stl;                  ///< source == stl
+  HexFormulation formulation = HexFormulation::full;  ///< hex8 elements only
+};
+
+/// Piecewise-linear amplitude a(t) [-]; constant beyond the first and last points.
+struct Amplitude {
+  std::vector<double> time;   ///< [s], strictly increasing
+  std::vector<double> value;  ///< [-], same size as time
+  bool total_time = false;    ///< false: t is the step time; true: the total time
+  /// a(t) by linear interpolation [-]; t in [s] on the amplitude's own clock.
+  double at(double t) const;
+};
+
+/// One boundary condition of a step. Components not listed in `dofs` are free.
+struct BoundarySpec {
+  std::string set;
+  enum class Kind { displacement, symmetry, fixed } kind = Kind::displacement;
+  std::array<bool, 3> dofs{false, false, false};  ///< constrained components x, y, z
+  double value = 0.0;                    ///< prescribed displacement [mm] (0 for symmetry/fixed)
+  std::optional<std::string> amplitude;  ///< name in CaseSpec::amplitudes; none: linear ramp
+  std::string key;                       ///< "steps[0].boundary[2]", for messages
+};
+
+/// Prescribed displacement [mm] of one constrained component at step time `t_step` [s] of a step of
+/// length `period` [s] starting at total time `t_start` [s]. `start_value` [mm]: that component's
+/// value at the end of the previous step (0 in the first step); used by the default linear ramp.
+double prescribed_value(const BoundarySpec& bc, const std::map<std::string, Amplitude>& amplitudes,
+                        double start_value, double t_step, double period, double t_start);
+
+/// ABAQUS-style automatic increment control of a step [s].
+struct IncrementSpec {
+  double initial = 0.0, min = 0.0, max = 0.0;  ///< [s]
+  int max_increments = 100;
+};
+
+enum class HistoryQuantity { U1, U2, U3, RF1, RF2, RF3 };
+std::string to_string(HistoryQuantity q);  ///< "U3"
+
+/// History column name with unit, e.g. "top.U3_mm", "top.RF3_N".
+std::string history_column(const std::string& set, HistoryQuantity q);
+
+struct HistoryRequest {
+  std::string set;
+  std::vector<HistoryQuantity> quantities;
+};
+
+struct OutputSpec {
+  std::optional<double> frames_every;           ///< [s] of step time
+  int frame_every_increments = 1;               ///< used when frames_every is empty
+  std::vector<HistoryRequest> history;
+};
+
+struct StepSpec {
+  std::string name;
+  enum class Type { static_, visco } type = Type::static_;
+  bool long_term = false;     ///< static only: long-term (relaxed) response
+  double period = 0.0;        ///< time period [s]
+  IncrementSpec increment;
+  std::vector<BoundarySpec> boundary;
+  OutputSpec output;
+};
+
+struct SolverSpec {
+  int threads = 0;  ///< 0: all hardware threads
+  enum class LinearSolver { automatic, cholmod, umfpack } linear_solver = LinearSolver::automatic;
+  double residual_tolerance = 0.005;   ///< [-] largest residual / time-averaged force
+  double correction_tolerance = 0.01;  ///< [-] largest correction / largest increment of u
+  int max_iterations = 16;
+  int max_cutbacks = 5;
+  double cutback_factor = 0.25;        ///< dt multiplier after a failed attempt
+  double growth_factor = 1.5;          ///< largest dt multiplier after an easy increment
+};
+
+/// A parsed, validated case file.
+struct CaseSpec {
+  std::filesystem::path file;           ///< the case file as given (for messages)
+  std::string description;
+  MeshSpec mesh;
+  std::filesystem::path material_file;  ///< resolved against the case folder
+  std::map<std::string, std::string> sets;  ///< set name -> selector text (syntax checked)
+  std::map<std::string, Amplitude> amplitudes;
+  std::vector<StepSpec> steps;
+  SolverSpec solver;
+};
+
+/// History columns of a run (union over steps, in order of first appearance), without "time_s".
+std::vector<std::string> history_columns(const CaseSpec& spec);
+
+}  // namespace cushion::solver

@@ -1,0 +1,110 @@
+// Virtual lab: measured dynamic modulus against the frequency-domain closed form, the platen that
+// only pushes (lift-off), seeded noise, and bad truth files.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+#include "material/calibration/lab.hpp"
+#include "material/hyperfoam.hpp"
+#include "material/input_error.hpp"
+#include "material/viscoelastic.hpp"
+
+namespace cal = cushion::calibration;
+namespace mat = cushion::material;
+
+namespace {
+
+std::shared_ptr<const mat::Hyperfoam> foam() {
+  // nu = 0: uniaxial compression with free lateral faces keeps the lateral stretch at 1.
+  return std::make_shared<mat::Hyperfoam>(std::vector<mat::HyperfoamTerm>{{0.004, 8.0, 0.0}, {0.002, -2.0, 0.0}});
+}
+
+}  // namespace
+
+TEST(Lab, DynamicModulusMatchesFrequencyDomainAtRelaxedPreload) {
+  // Fast Prony terms only (0.01, 0.1 s; paper Table 3 moduli), so the 40 s preload ramp leaves the base
+  // state relaxed and the small-amplitude response is S11 + l^2 C1111_inf (1 + sum a_i i w tau_i/(1 + i w tau_i)).
+  const auto terms = mat::prony_from_absolute(3.05, {23.9, 19.7}, {0.01, 0.1});
+  const mat::Viscoelastic model(foam(), terms);
+  cal::LabSpecimen specimen;
+  cal::DynamicProtocol p;
+  p.preload_strain = 0.25;
+  p.acceleration_amplitude = 0.0025;  // small: about 0.03 mm at 1 Hz, linear regime
+  p.frequencies_Hz = {1.0, 5.0, 20.0};
+  p.cycles = 6;
+  p.fit_cycles = 3;
+  p.steps_per_cycle = 128;
+  const cal::DynamicRecord rec = cal::run_dynamic(model, specimen, p, cal::LabNoise{}, 0);
+
+  const double l = 0.75;
+  cushion::Mat3 F = cushion::Mat3::Identity();
+  F(0, 0) = l;
+  const auto e = foam()->evaluate(F);
+  for (std::size_t i = 0; i < rec.frequency_Hz.size(); ++i) {
+    const double w = 2.0 * std::numbers::pi * rec.frequency_Hz[i];
+    const std::complex<double> E = e.S(0) + l * l * e.dS_dE(0, 0) * mat::prony_complex_factor(terms, w);
+    // 128 steps per cycle: interpolation error ~ (2 pi / 128)^2 / 12 = 2e-4; tolerance 0.5% and 0.2 deg.
+    EXPECT_NEAR(rec.dynamic_modulus_kPa[i], std::abs(E) * 1000.0, 5e-3 * std::abs(E) * 1000.0) << rec.frequency_Hz[i];
+    EXPECT_NEAR(rec.phase_deg[i], std::arg(E) * 180.0 / std::numbers::pi, 0.2) << rec.frequency_Hz[i];
+  }
+}
+
+TEST(Lab, PlatenOnlyPushesAndForceIsNeverTensile) {
+  // A slow-recovering foam unloaded fast: the platen leaves it behind and the machine reads zero.
+  const auto terms = mat::prony_from_absolute(3.05, {23.9, 19.7, 8.99, 12.4, 8.14}, {0.01, 0.1, 1, 10, 100});
+  const mat::Viscoelastic model(foam(), terms);
+  cal::QuasiStaticProtocol p;
+  p.rate_mm_min = 480.0;
+  p.preload_cycle = false;
+  const auto rec = cal::run_quasi_static(model, cal::LabSpecimen{}, p);
+  ASSERT_GT(rec.time_s.size(), 10u);
+  bool lift_off = false;
+  for (std::size_t k = 0; k < rec.force_N.size(); ++k) {
+    EXPECT_GE(rec.force_N[k], 0.0) << "tensile force at t = " << rec.time_s[k];
+    if (rec.force_N[k] == 0.0 && rec.displacement_mm[k] > 1.0) lift_off = true;
+  }
+  EXPECT_TRUE(lift_off) << "expected the foam to lag the platen on a 480 mm/min unload";
+  EXPECT_NEAR(rec.displacement_mm.back(), 0.0, 1e-9);
+}
+
+TEST(Lab, NoiseIsSeededAndReproducible) {
+  cal::QuasiStaticRecord a{{0, 1, 2}, {0, 1, 2}, {10.0, 20.0, 30.0}}, b = a, c = a;
+  cal::LabNoise noise{7, 0.005, 0.0};
+  cal::add_force_noise(a, noise, 3);
+  cal::add_force_noise(b, noise, 3);
+  cal::add_force_noise(c, noise, 4);
+  EXPECT_EQ(a.force_N, b.force_N);
+  EXPECT_NE(a.force_N, c.force_N);
+  for (std::size_t k = 0; k < 3; ++k) EXPECT_LT(std::abs(a.force_N[k] - 10.0 * (k + 1)), 0.1 * (k + 1));
+}
+
+TEST(Lab, BadTruthFilesNameTheKey) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "cushion_test_lab";
+  fs::create_directories(dir);
+  const auto expect_error = [&](const std::string& text, const std::string& key) {
+    const fs::path f = dir / "truth.json";
+    std::ofstream(f) << text;
+    try {
+      cal::read_lab_truth(f);
+      FAIL() << "no error for " << text;
+    } catch (const cushion::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("truth.json"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
+  };
+  const std::string specimen = R"("specimen": {"length_mm": 80, "width_mm": 80, "thickness_mm": 80})";
+  expect_error(R"({"material": "m.json", )" + specimen + R"(, "quasi_static": [{"name": "a", "rate_mm_min": -5}]})",
+               "quasi_static[0].rate_mm_min");
+  expect_error(R"({"material": "m.json", )" + specimen + R"(, "dynamic": [{"name": "d", "preload_strain": 0.25,
+               "acceleration_amplitude_m_s2": 0.25, "frequencies_Hz": [1, 2]}]})",
+               "frequencies_Hz");
+  expect_error(R"({"material": "m.json", )" + specimen + R"(, "quasi_static": [{"name": "a", "rate_mm_min": 5, "colour": 1}]})",
+               "colour");
+  expect_error(R"({"material": "m.json", )" + specimen + R"(})", "no test");
+  expect_error(R"({"material": "m.json", "specimen": {"length_mm": 80}})", "width_mm");
+  fs::remove_all(dir);
+}

@@ -1,0 +1,109 @@
+// Requirement: the Mullins (Ogden-Roxburgh) effect leaves first loading unchanged, softens unloading
+// by the closed-form eta, reloading retraces unloading below W_max and rejoins the base curve above it;
+// its increment tangent is exact and its complex tangent is the reversible tangent at W_max.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "material/effect_mullins.hpp"
+#include "tests/material/test_effect_support.hpp"
+
+namespace cushion::material {
+namespace {
+
+const MullinsParameters kParameters{2.0, 2e-4, 0.2};
+
+Mat3 confined(double l) { return Vec3(l, 1.0, 1.0).asDiagonal(); }
+
+/// S11 along the stretches l[k] (laterally confined), from the virgin state with dt = 0.1 s.
+std::vector<double> drive(const Material& m, const std::vector<double>& l) {
+  std::vector<double> state(m.state_size()), next(m.state_size()), S11;
+  m.initial_state(state);
+  Mat3 F_old = Mat3::Identity();
+  for (double lk : l) {
+    const PointResponse r = m.integrate(F_old, confined(lk), 0.1, state, next);
+    EXPECT_EQ(r.status, Status::ok) << r.message;
+    S11.push_back(r.S(0));
+    state.swap(next);
+    F_old = confined(lk);
+  }
+  return S11;
+}
+
+/// 1 -> 0.6 (load), 0.6 -> 0.9 (unload), 0.9 -> 0.6 (reload), 0.6 -> 0.5 (beyond), steps of 0.01.
+std::vector<double> path() {
+  std::vector<double> l;
+  for (int n = 99; n >= 60; --n) l.push_back(n / 100.0);  // k = 0..39
+  for (int n = 61; n <= 90; ++n) l.push_back(n / 100.0);  // k = 40..69
+  for (int n = 89; n >= 50; --n) l.push_back(n / 100.0);  // k = 70..109
+  return l;
+}
+
+TEST(EffectMullins, LoadingUnloadingReloading) {
+  const auto foam = test::effect_test_foam();
+  const MullinsEffect m(foam, foam, kParameters);
+  const std::vector<double> l = path(), S = drive(m, l), S_base = drive(*foam, l);
+  const double W_max = foam->evaluate(confined(0.6)).W;
+  for (std::size_t k = 0; k < l.size(); ++k) {
+    const double W = foam->evaluate(confined(l[k])).W;
+    if (k < 40 || k > 99) {
+      // First loading and loading beyond the previous maximum: the base curve (eta = 1), exact to 1e-10.
+      EXPECT_NEAR(S[k], S_base[k], 1e-10 * std::abs(S_base[k])) << "l = " << l[k];
+      continue;
+    }
+    // Unloading/reloading: eta from the closed form (independent erf evaluation), 1e-10 relative;
+    // the stress is strictly below the loading stress in magnitude.
+    const double eta = 1.0 - std::erf((W_max - W) / (kParameters.m + kParameters.beta * W_max)) / kParameters.r;
+    EXPECT_NEAR(S[k], eta * S_base[k], 1e-10 * std::abs(S_base[k])) << "l = " << l[k];
+    if (W < W_max * (1.0 - 1e-9)) {
+      EXPECT_LT(std::abs(S[k]), std::abs(S_base[k]) * (1.0 - 1e-6)) << "l = " << l[k];
+    }
+  }
+  // Reload retraces the unloading curve below W_max: same stretch, same stress, 1e-10 relative.
+  for (std::size_t k = 40; k < 69; ++k) {
+    const std::size_t k_reload = 138 - k;  // l[k_reload] == l[k] (0.61 .. 0.89)
+    ASSERT_DOUBLE_EQ(l[k_reload], l[k]);
+    EXPECT_NEAR(S[k_reload], S[k], 1e-10 * std::abs(S[k])) << "l = " << l[k];
+  }
+  // The softening is substantial at l = 0.9 (not a trivial check).
+  EXPECT_LT(std::abs(S[69]), 0.9 * std::abs(S_base[69]));
+}
+
+TEST(EffectMullins, TangentMatchesFiniteDifferences) {
+  // Random F below a previous maximum (W_max = 1.3 W + m), on the loading branch (W_max = 0), over
+  // hyperfoam and over the viscoelastic model with a non-trivial state. Tolerance 1e-6 relative.
+  std::mt19937 rng(17);
+  const auto foam = test::effect_test_foam();
+  const auto visco = test::effect_test_visco();
+  const MullinsEffect on_foam(foam, foam, kParameters);
+  const MullinsEffect on_visco(visco, foam, kParameters);
+  for (int trial = 0; trial < 4; ++trial) {
+    const Mat3 F_old = test::random_F(rng, 0.25), F = test::random_F(rng, 0.25);
+    const double W = foam->evaluate(F).W;
+    for (double W_max : {1.3 * W + kParameters.m, 0.0}) {
+      EXPECT_LT(test::increment_tangent_error(on_foam, F_old, F, 0.05, {W_max}), 1e-6) << "trial " << trial;
+      std::vector<double> state(on_visco.state_size()), next(on_visco.state_size());
+      on_visco.initial_state(state);
+      on_visco.integrate(Mat3::Identity(), F_old, 0.05, state, next);
+      next.back() = W_max;
+      EXPECT_LT(test::increment_tangent_error(on_visco, F_old, F, 0.05, next), 1e-6) << "trial " << trial;
+    }
+  }
+}
+
+TEST(EffectMullins, ComplexTangentIsTheReversibleTangentAtWmax) {
+  // complex_tangent(F_b) equals the increment tangent just below W_max = W(F_b) (unloading side),
+  // 1e-8 relative, is real, and differs from the base tangent (the softening slope).
+  const auto foam = test::effect_test_foam();
+  const MullinsEffect m(foam, foam, kParameters);
+  const Mat3 F_b = Vec3(0.75, 0.98, 0.98).asDiagonal();
+  std::vector<double> state{foam->evaluate(F_b).W * (1.0 + 1e-12)}, next(1);
+  const PointResponse r = m.integrate(F_b, F_b, 1.0, state, next);
+  const Mat6c C = m.complex_tangent(F_b, 10.0);
+  EXPECT_LT(test::rel_diff(r.dS_dE, C.real().eval()), 1e-8);
+  EXPECT_EQ(C.imag(), Mat6::Zero());
+  EXPECT_GT(test::rel_diff(C.real().eval(), foam->evaluate(F_b).dS_dE), 1e-3);
+}
+
+}  // namespace
+}  // namespace cushion::material

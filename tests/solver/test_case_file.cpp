@@ -1,0 +1,283 @@
+// Case files: the shipped cube case parses to the expected structs; every kind of bad input is an
+// InputError that names the file and the key path; amplitude and ramp values are exact.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "material/input_error.hpp"
+#include "solver/case/case_file.hpp"
+
+namespace fs = std::filesystem;
+using cushion::InputError;
+using namespace cushion::solver;
+
+namespace {
+
+/// A fresh folder with an (unread) material file "foam.json" and a mesh file "part.inp".
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("cushion_h6_case_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "foam.json") << "{}";
+  std::ofstream(dir / "part.inp") << "*NODE\n";
+  return dir;
+}
+
+nlohmann::json valid_case() {
+  return nlohmann::json::parse(R"({
+    "mesh": {"generate": {"type": "hex8", "box_mm": [0, 10, 0, 10, 0, 20], "elements": [1, 1, 2]}},
+    "material": {"file": "foam.json"},
+    "sets": {"bottom": "z == 0", "top": "z == 20"},
+    "amplitudes": {"ramp": {"time_s": [0, 1, 3], "value": [0, 1, 0.5]}},
+    "steps": [
+      {"name": "load", "type": "static", "time_period_s": 1,
+       "boundary": [{"set": "bottom", "type": "fixed"}, {"set": "top", "dof": "z", "value_mm": -5}]},
+      {"name": "creep", "type": "visco", "time_period_s": 3,
+       "increment": {"initial_s": 0.1, "min_s": 0.001, "max_s": 0.5, "max_increments": 50},
+       "boundary": [{"set": "bottom", "type": "fixed"},
+                    {"set": "top", "dof": "xyz", "value_mm": -5, "amplitude": "ramp"}],
+       "output": {"frames_every_s": 0.5, "history": [{"set": "top", "quantities": ["U3", "RF3"]}]}}
+    ]})");
+}
+
+/// Parses `j` written as "case.json" in a scratch folder; returns the InputError message ("" if none).
+std::string error_of(const std::string& text, const std::string& name) {
+  const fs::path dir = scratch(name);
+  try {
+    parse_case_json(text, dir / "case.json");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+std::string error_of(const nlohmann::json& j, const std::string& name) { return error_of(j.dump(2), name); }
+
+/// Expects an InputError whose message starts with the case file and contains `key` and `words`.
+void expect_error(const std::string& message, const std::string& key, const std::string& words) {
+  ASSERT_FALSE(message.empty()) << "no InputError for " << key;
+  EXPECT_NE(message.find("case.json:"), std::string::npos) << message;
+  EXPECT_NE(message.find(key), std::string::npos) << "key '" << key << "' not named in: " << message;
+  EXPECT_NE(message.find(words), std::string::npos) << "'" << words << "' not in: " << message;
+}
+
+}  // namespace
+
+TEST(CaseFile, ValidCaseGivesPlainStructs) {
+  const fs::path dir = scratch("valid");
+  const CaseSpec spec = parse_case_json(valid_case().dump(), dir / "case.json");
+  EXPECT_EQ(spec.mesh.source, MeshSpec::Source::generate);
+  EXPECT_EQ(spec.mesh.generate.elements, (std::array<int, 3>{1, 1, 2}));
+  EXPECT_EQ(spec.mesh.generate.high.z(), 20.0);
+  EXPECT_EQ(spec.material_file, dir / "foam.json");
+  ASSERT_EQ(spec.steps.size(), 2u);
+  const StepSpec& load = spec.steps[0];
+  EXPECT_EQ(load.type, StepSpec::Type::static_);
+  // ABAQUS defaults: initial = max = period, min = 1e-5 period, 100 increments.
+  EXPECT_EQ(load.increment.initial, 1.0);
+  EXPECT_EQ(load.increment.max, 1.0);
+  EXPECT_DOUBLE_EQ(load.increment.min, 1e-5);
+  EXPECT_EQ(load.increment.max_increments, 100);
+  EXPECT_EQ(load.boundary[0].kind, BoundarySpec::Kind::fixed);
+  EXPECT_EQ(load.boundary[0].dofs, (std::array<bool, 3>{true, true, true}));
+  EXPECT_EQ(load.boundary[1].dofs, (std::array<bool, 3>{false, false, true}));
+  EXPECT_EQ(load.boundary[1].value, -5.0);
+  EXPECT_EQ(load.boundary[1].key, "steps[0].boundary[1]");
+  const StepSpec& creep = spec.steps[1];
+  EXPECT_EQ(creep.type, StepSpec::Type::visco);
+  EXPECT_EQ(creep.increment.initial, 0.1);
+  EXPECT_EQ(*creep.output.frames_every, 0.5);
+  EXPECT_EQ(*creep.boundary[1].amplitude, "ramp");
+  EXPECT_EQ(history_columns(spec), (std::vector<std::string>{"top.U3_mm", "top.RF3_N"}));
+  EXPECT_EQ(spec.solver.residual_tolerance, 0.005);
+  EXPECT_EQ(spec.solver.linear_solver, SolverSpec::LinearSolver::automatic);
+}
+
+TEST(CaseFile, AmplitudeAndRampValuesAreExact) {
+  const fs::path dir = scratch("amplitude");
+  const CaseSpec spec = parse_case_json(valid_case().dump(), dir / "case.json");
+  const Amplitude& a = spec.amplitudes.at("ramp");
+  // Table (0,0) (1,1) (3,0.5): linear in between, constant outside (ABAQUS).
+  EXPECT_DOUBLE_EQ(a.at(-1.0), 0.0);
+  EXPECT_DOUBLE_EQ(a.at(0.25), 0.25);
+  EXPECT_DOUBLE_EQ(a.at(1.0), 1.0);
+  EXPECT_DOUBLE_EQ(a.at(2.0), 0.75);
+  EXPECT_DOUBLE_EQ(a.at(10.0), 0.5);
+  const BoundarySpec& ramped = spec.steps[0].boundary[1];  // no amplitude: linear from start value
+  EXPECT_DOUBLE_EQ(prescribed_value(ramped, spec.amplitudes, 0.0, 0.25, 1.0, 0.0), -1.25);
+  EXPECT_DOUBLE_EQ(prescribed_value(ramped, spec.amplitudes, -1.0, 0.5, 1.0, 7.0), -3.0);
+  EXPECT_DOUBLE_EQ(prescribed_value(ramped, spec.amplitudes, 0.0, 1.0, 1.0, 0.0), -5.0);
+  const BoundarySpec& scaled = spec.steps[1].boundary[1];  // value * a(step time)
+  EXPECT_DOUBLE_EQ(prescribed_value(scaled, spec.amplitudes, 123.0, 2.0, 3.0, 1.0), -3.75);
+  EXPECT_EQ(prescribed_value(spec.steps[1].boundary[0], spec.amplitudes, 4.0, 1.0, 3.0, 1.0), 0.0);
+}
+
+TEST(CaseFile, ShippedCubeCaseParses) {
+  // The shipped text, placed where its relative material path resolves (independent of whether
+  // the material file has been shipped yet).
+  const fs::path shipped = fs::path(CUSHION_SOURCE_DIR) / "cases/cube_compression/case.json";
+  std::ifstream in(shipped);
+  ASSERT_TRUE(in) << shipped;
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const fs::path root = scratch("cube");
+  fs::create_directories(root / "materials");
+  fs::create_directories(root / "cube_compression");
+  std::ofstream(root / "materials/paper_table3.json") << "{}";
+  const CaseSpec spec = parse_case_json(text, root / "cube_compression/case.json");
+
+  EXPECT_EQ(spec.mesh.generate.type, cushion::mesh::ElementType::hex8);
+  EXPECT_EQ(spec.mesh.generate.high, cushion::mesh::Vec3(40, 40, 80));
+  ASSERT_EQ(spec.steps.size(), 3u);
+  const double speed = 120.0 / 60.0;  // 120 mm/min in mm/s
+  EXPECT_DOUBLE_EQ(spec.steps[0].period, 60.0 / speed);
+  EXPECT_DOUBLE_EQ(spec.steps[1].period, 2.0);
+  EXPECT_DOUBLE_EQ(spec.steps[2].period, 60.0 / speed);
+  for (const StepSpec& step : spec.steps) {
+    EXPECT_EQ(step.type, StepSpec::Type::visco);
+    const BoundarySpec& top = step.boundary.back();
+    EXPECT_EQ(top.set, "top");
+    EXPECT_EQ(top.dofs, (std::array<bool, 3>{false, false, true}));  // platen: x, y free
+    EXPECT_EQ(step.boundary[2].set, "bottom");
+    EXPECT_EQ(step.boundary[2].dofs, (std::array<bool, 3>{false, false, true}));  // roller
+  }
+  EXPECT_EQ(spec.steps[0].boundary.back().value, -60.0);  // 75 % of 80 mm
+  EXPECT_EQ(spec.steps[1].boundary.back().value, -60.0);
+  EXPECT_EQ(spec.steps[2].boundary.back().value, 0.0);
+  EXPECT_EQ(spec.sets.at("top"), "z == 80");
+  EXPECT_EQ(history_columns(spec), (std::vector<std::string>{"top.U3_mm", "top.RF3_N"}));
+  // Loading rate of the ramp: 60 mm over 30 s.
+  const auto& top = spec.steps[0].boundary.back();
+  EXPECT_DOUBLE_EQ(prescribed_value(top, spec.amplitudes, 0.0, 1.0, spec.steps[0].period, 0.0), -speed);
+
+  const fs::path material = fs::path(CUSHION_SOURCE_DIR) / "cases/materials/paper_table3.json";
+  if (fs::exists(material)) {
+    EXPECT_NO_THROW(read_case_file(shipped));
+  }
+}
+
+TEST(CaseFile, BuildsGeneratedMeshWithSelectorSets) {
+  const fs::path dir = scratch("build");
+  const CaseSpec spec = parse_case_json(valid_case().dump(), dir / "case.json");
+  const cushion::mesh::Mesh mesh = build_case_mesh(spec);
+  EXPECT_EQ(mesh.num_elements(), 2u);
+  EXPECT_EQ(mesh.num_nodes(), 12u);
+  ASSERT_EQ(mesh.node_sets.at("top").size(), 4u);
+  for (int n : mesh.node_sets.at("top")) EXPECT_EQ(mesh.nodes[n].z(), 20.0);
+  EXPECT_THROW(check_set_names(spec, {"bottom"}), InputError);
+}
+
+TEST(CaseFile, UnknownKeyIsNamedWithSuggestion) {
+  auto j = valid_case();
+  j["steps"][1]["increment"]["initial_ss"] = 0.1;
+  expect_error(error_of(j, "unknown"), "steps[1].increment.initial_ss", "did you mean 'initial_s'");
+  j = valid_case();
+  j["solvr"] = nlohmann::json::object();
+  expect_error(error_of(j, "unknown_top"), "solvr", "unknown key");
+}
+
+TEST(CaseFile, MissingKeyIsNamed) {
+  auto j = valid_case();
+  j["steps"][0].erase("time_period_s");
+  expect_error(error_of(j, "missing"), "steps[0].time_period_s", "missing key");
+  j = valid_case();
+  j.erase("material");
+  expect_error(error_of(j, "missing_material"), "material", "missing key");
+}
+
+TEST(CaseFile, WrongTypeIsNamed) {
+  auto j = valid_case();
+  j["steps"][0]["time_period_s"] = "30";
+  expect_error(error_of(j, "type"), "steps[0].time_period_s", "must be a number");
+  j = valid_case();
+  j["mesh"]["generate"]["elements"][1] = 2.5;
+  expect_error(error_of(j, "integer"), "mesh.generate.elements[1]", "integer");
+}
+
+TEST(CaseFile, WrongUnitIsNamed) {
+  auto j = valid_case();
+  j["steps"][0].erase("time_period_s");
+  j["steps"][0]["time_period_ms"] = 1000;
+  expect_error(error_of(j, "unit"), "steps[0].time_period_ms", "wrong unit 'ms'");
+  j = valid_case();
+  j["steps"][0]["boundary"][1].erase("value_mm");
+  j["steps"][0]["boundary"][1]["value_m"] = -0.005;
+  expect_error(error_of(j, "unit_m"), "steps[0].boundary[1].value_m", "'value_mm'");
+}
+
+TEST(CaseFile, NegativeOrInconsistentTimesAreRejected) {
+  auto j = valid_case();
+  j["steps"][1]["time_period_s"] = -3;
+  expect_error(error_of(j, "negative"), "steps[1].time_period_s", "must be > 0");
+  j = valid_case();
+  j["amplitudes"]["ramp"]["time_s"] = {0, 2, 1};
+  expect_error(error_of(j, "increasing"), "amplitudes.ramp.time_s", "strictly increasing");
+  j = valid_case();
+  j["steps"][1]["increment"]["min_s"] = 0.2;
+  expect_error(error_of(j, "min"), "steps[1].increment.min_s", "must not exceed initial_s");
+}
+
+TEST(CaseFile, UnknownSetOrAmplitudeIsNamed) {
+  auto j = valid_case();
+  j["steps"][1]["boundary"][1]["set"] = "topp";
+  expect_error(error_of(j, "set"), "steps[1].boundary[1].set", "unknown set \"topp\"");
+  j = valid_case();
+  j["steps"][1]["boundary"][1]["amplitude"] = "sine";
+  expect_error(error_of(j, "amplitude"), "steps[1].boundary[1].amplitude", "unknown amplitude");
+  j = valid_case();
+  j["steps"][1]["output"]["history"][0]["set"] = "side";
+  expect_error(error_of(j, "history"), "steps[1].output.history[0].set", "unknown set");
+}
+
+TEST(CaseFile, NonFiniteNumbersAreRejected) {
+  auto text = valid_case().dump(2);
+  const std::string from = "\"value_mm\": -5";
+  ASSERT_NE(text.find(from), std::string::npos);
+  text.replace(text.find(from), from.size(), "\"value_mm\": NaN");
+  expect_error(error_of(text, "nan"), "value_mm", "invalid JSON");
+  auto j = valid_case().dump(2);
+  j.replace(j.find(from), from.size(), "\"value_mm\": 1e999");
+  expect_error(error_of(j, "overflow"), "value_mm", "invalid JSON");
+}
+
+TEST(CaseFile, ReservedFeaturesSayNotSupportedYet) {
+  auto j = valid_case();
+  j["steps"][1]["type"] = "steady_state";
+  expect_error(error_of(j, "steady"), "steps[1].type", "not supported yet");
+  j = valid_case();
+  j["steps"][0]["contact"] = nlohmann::json::array();
+  expect_error(error_of(j, "contact"), "steps[0].contact", "not supported yet");
+  j = valid_case();
+  j["steps"][0]["type"] = "dynamic";
+  expect_error(error_of(j, "dynamic"), "steps[0].type", "is not one of");
+}
+
+TEST(CaseFile, MeshAndFilesAreChecked) {
+  auto j = valid_case();
+  j["material"]["file"] = "nothere.json";
+  expect_error(error_of(j, "material"), "material.file", "file not found");
+  j = valid_case();
+  j["mesh"]["generate"]["box_mm"] = {0, 10, 5, 5, 0, 1};
+  expect_error(error_of(j, "box"), "mesh.generate.box_mm", "y0 < y1");
+  j = valid_case();
+  j["mesh"]["generate"]["type"] = "tet4";
+  j["mesh"]["formulation"] = "fbar";
+  expect_error(error_of(j, "fbar"), "mesh.formulation", "hex8");
+  j = valid_case();
+  j["mesh"] = {{"inp", "part.inp"}, {"generate", j["mesh"]["generate"]}};
+  expect_error(error_of(j, "two_sources"), "mesh", "exactly one");
+  j = valid_case();
+  j["sets"]["top"] = "z === 20";
+  expect_error(error_of(j, "selector"), "sets.top", "z === 20");
+  // An .inp mesh may define its own sets: names are checked once the mesh is read.
+  j = valid_case();
+  j["mesh"] = {{"inp", "part.inp"}};
+  j["steps"][0]["boundary"][1]["set"] = "NSET_FROM_INP";
+  EXPECT_EQ(error_of(j, "inp"), "");
+}
+
+TEST(CaseFile, SyntaxErrorNamesLine) {
+  const std::string message = error_of(std::string("{\n  \"mesh\": {,\n}"), "syntax");
+  expect_error(message, "case.json:2:", "invalid JSON");
+}

@@ -1,0 +1,105 @@
+// `cushion fit CAMPAIGN.json -o DIR`: the paper's identification method from test files to a material
+// (steps 1-6), the Prony conversion for the solver (7) and the consistency refit (8), with a report.
+#include <iostream>
+#include <sstream>
+
+#include "material/calibration/campaign.hpp"
+#include "material/calibration/fit_output.hpp"
+#include "material/calibration/fit_pipeline.hpp"
+#include "material/input_error.hpp"
+#include "tools/command.hpp"
+
+namespace {
+
+struct FitCliOptions {
+  std::string campaign, out;
+  int terms = 3;
+  std::string nu = "0";
+  std::vector<double> tau;
+  bool no_refit = false;
+  std::string default_material = "refit";
+  std::string normalisation = "tangent";
+  std::string refit_on = "calibration";
+  int cycles = 20, fit_cycles = 10;
+  double preload_rate = 30.0;
+  bool relaxed_preload = false;
+};
+
+std::string gnuplot_executable() {
+#ifdef CUSHION_GNUPLOT
+  return cushion::calibration::find_gnuplot(CUSHION_GNUPLOT);
+#else
+  return cushion::calibration::find_gnuplot();
+#endif
+}
+
+const cushion::tools::Registrar reg{"fit", [](CLI::App& app) {
+  auto opt = std::make_shared<FitCliOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "fit", "Identify a visco-hyperfoam material from a test campaign (paper sections 2-3) and write a report");
+  sub->add_option("campaign", opt->campaign, "campaign manifest (JSON) naming the test CSV files")->required();
+  sub->add_option("-o,--output", opt->out, "output folder (material files, ABAQUS cards, report, plots)")->required();
+  sub->add_option("--terms", opt->terms, "hyperfoam terms N (1..6)")->check(CLI::Range(1, 6));
+  sub->add_option("--nu", opt->nu, "Poisson ratio of the hyperfoam: a value in [0, 0.45] or 'fit'");
+  sub->add_option("--tau", opt->tau, "Prony relaxation times [s] (default 0.01 0.1 1 10 100)")->delimiter(',');
+  sub->add_flag("--no-refit", opt->no_refit, "skip the consistency refit (step 8)");
+  sub->add_option("--default", opt->default_material, "material.json: 'refit' (if accepted) or 'paper'")
+      ->check(CLI::IsMember({"paper", "refit"}));
+  sub->add_option("--normalisation", opt->normalisation,
+                  "relative Prony moduli of the paper's material: 'tangent' (a_i = E_i/K_v) or 'paper' (g_i = E_i/E_0)")
+      ->check(CLI::IsMember({"paper", "tangent"}));
+  sub->add_option("--refit-on", opt->refit_on,
+                  "quasi-static tests of the refit: 'calibration' (the issue's method) or 'all' (several rates "
+                  "separate the long-term curve from the slow Prony terms)")
+      ->check(CLI::IsMember({"calibration", "all"}));
+  sub->add_option("--dynamic-cycles", opt->cycles, "dynamic test: cycles run per frequency (paper: 20)")->check(CLI::PositiveNumber);
+  sub->add_option("--fit-cycles", opt->fit_cycles, "dynamic test: last cycles measured per frequency (10)")->check(CLI::PositiveNumber);
+  sub->add_option("--preload-rate", opt->preload_rate, "dynamic test: preload ramp speed [mm/min] (paper: 30)")
+      ->check(CLI::PositiveNumber);
+  sub->add_flag("--relaxed-preload", opt->relaxed_preload, "model the dynamic test about a fully relaxed preload");
+  sub->callback([opt] {
+    using namespace cushion::calibration;
+    FitOptions o;
+    o.terms = opt->terms;
+    if (opt->nu == "fit") {
+      o.nu.reset();
+    } else {
+      std::istringstream in(opt->nu);
+      double v = -1.0;
+      in >> v;
+      if (!in || !in.eof() || !(v >= 0.0 && v <= 0.45))
+        throw cushion::InputError("--nu " + opt->nu + ": must be a number in [0, 0.45] or 'fit'");
+      o.nu = v;
+    }
+    if (!opt->tau.empty()) {
+      for (double t : opt->tau)
+        if (!(t > 0.0)) throw cushion::InputError("--tau: relaxation times must be > 0");
+      o.tau = opt->tau;
+    }
+    o.refit = !opt->no_refit;
+    o.refit_all_quasi_static = opt->refit_on == "all";
+    if (opt->fit_cycles > opt->cycles) throw cushion::InputError("--fit-cycles: must not exceed --dynamic-cycles");
+    o.dynamic_schedule.cycles = opt->cycles;
+    o.dynamic_schedule.fit_cycles = opt->fit_cycles;
+    o.dynamic_schedule.preload_rate_mm_min = opt->preload_rate;
+    o.relaxed_preload = opt->relaxed_preload;
+    o.default_material = opt->default_material == "paper" ? DefaultMaterial::paper : DefaultMaterial::refit;
+    o.normalisation = opt->normalisation == "paper" ? PronyNormalisation::paper : PronyNormalisation::tangent;
+
+    std::cout << "fit: reading " << opt->campaign << "\n";
+    const Campaign campaign = read_campaign(opt->campaign);
+    std::cout << "fit: " << campaign.quasi_static.size() << " quasi-static and " << campaign.dynamic.size()
+              << " dynamic test(s)\n";
+    const FitResult result = fit_pipeline(campaign, o, std::cout);
+    const auto plots = write_fit_outputs(result, campaign, opt->out, gnuplot_executable(), std::cout);
+    std::cout << "fit: default material (" << (result.default_choice == DefaultMaterial::refit ? "refit" : "paper")
+              << "): " << result.default_reason << "\n";
+    std::cout << "fit: outputs in " << opt->out << "/ : material.json, material_paper.json, material_refit.json, "
+              << "abaqus_paper.inp, abaqus_refit.inp, report.md, report.json";
+    std::size_t drawn = 0;
+    for (const auto& p : plots) drawn += p.drawn;
+    std::cout << ", " << plots.size() << " plots (" << drawn << " PNG drawn)\n";
+  });
+}};
+
+}  // namespace

@@ -1,0 +1,50 @@
+// `cushion run CASE.json -o OUTDIR`: runs the steps of a case file and writes frames for ParaView
+// (OUTDIR/results.pvd), the history table (OUTDIR/history.csv) and the iteration log (OUTDIR/solver.log).
+#include <iostream>
+#include <memory>
+
+#include "solver/analysis/analysis.hpp"
+#include "solver/output/interrupt.hpp"
+#include "tools/command.hpp"
+
+namespace cushion::tools {
+
+namespace {
+
+struct RunCommandOptions {
+  std::string case_file, output_dir;
+  int threads = -1;
+  bool quiet = false;
+};
+
+void run_command(const RunCommandOptions& o) {
+  const solver::LoadedCase loaded = solver::load_case(o.case_file);
+  solver::RunOptions options;
+  options.output_dir = o.output_dir;
+  options.threads = o.threads;
+  options.progress = o.quiet ? nullptr : &std::cout;
+  if (!o.quiet)
+    std::cout << "cushion run " << o.case_file << ": " << loaded.mesh.num_nodes() << " nodes, "
+              << loaded.mesh.num_elements() << " elements, " << loaded.spec.steps.size() << " steps -> "
+              << o.output_dir << std::endl;
+  const solver::InterruptGuard guard;
+  const solver::RunSummary summary = solver::run_analysis(loaded, options);
+  // The summary is printed even with --quiet: it is the result of the run.
+  std::cout << solver::format_summary(summary) << std::flush;
+}
+
+const Registrar reg{"run", [](CLI::App& app) {
+  auto o = std::make_shared<RunCommandOptions>();
+  CLI::App* sub = app.add_subcommand("run", "run the steps of a case file (frames for ParaView, history CSV, log)");
+  sub->add_option("case", o->case_file, "case file (JSON, see cases/cube_compression/case.json)")->required();
+  sub->add_option("-o,--output", o->output_dir, "output folder (created; results.pvd, history.csv, solver.log)")
+      ->required();
+  sub->add_option("--threads", o->threads, "threads of the element loop (default: the case's solver.threads, 0 = all)")
+      ->check(CLI::Range(0, 1024));
+  sub->add_flag("--quiet", o->quiet, "no progress lines (the summary is still printed)");
+  sub->callback([o] { run_command(*o); });
+}};
+
+}  // namespace
+
+}  // namespace cushion::tools
