@@ -10,15 +10,10 @@
 #include <unordered_map>
 
 #include "material/input_error.hpp"
+#include "mesh/text.hpp"
 
 namespace cushion::mesh {
 namespace {
-
-std::string trim(const std::string& s) {
-  const auto first = s.find_first_not_of(" \t\r\n");
-  if (first == std::string::npos) return "";
-  return s.substr(first, s.find_last_not_of(" \t\r\n") - first + 1);
-}
 
 std::string upper(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(),

@@ -6,15 +6,10 @@
 #include <sstream>
 
 #include "material/input_error.hpp"
+#include "mesh/text.hpp"
 
 namespace cushion::mesh {
 namespace {
-
-std::string trim(const std::string& s) {
-  const auto first = s.find_first_not_of(" \t\r\n");
-  if (first == std::string::npos) return "";
-  return s.substr(first, s.find_last_not_of(" \t\r\n") - first + 1);
-}
 
 struct Parser {
   std::string text, where;

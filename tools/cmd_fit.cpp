@@ -1,5 +1,6 @@
 // `cushion fit CAMPAIGN.json -o DIR`: the paper's identification method from test files to a material
 // (steps 1-6), the Prony conversion for the solver (7) and the consistency refit (8), with a report.
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 
@@ -94,8 +95,10 @@ const cushion::tools::Registrar reg{"fit", [](CLI::App& app) {
     const auto plots = write_fit_outputs(result, campaign, opt->out, gnuplot_executable(), std::cout);
     std::cout << "fit: default material (" << (result.default_choice == DefaultMaterial::refit ? "refit" : "paper")
               << "): " << result.default_reason << "\n";
-    std::cout << "fit: outputs in " << opt->out << "/ : material.json, material_paper.json, material_refit.json, "
-              << "abaqus_paper.inp, abaqus_refit.inp, report.md, report.json";
+    std::cout << "fit: outputs in " << opt->out << "/ :";
+    for (const char* f : {"material.json", "material_paper.json", "material_refit.json", "abaqus_paper.inp",
+                          "abaqus_refit.inp", "report.md", "report.json"})
+      if (std::filesystem::exists(std::filesystem::path(opt->out) / f)) std::cout << " " << f;
     std::size_t drawn = 0;
     for (const auto& p : plots) drawn += p.drawn;
     std::cout << ", " << plots.size() << " plots (" << drawn << " PNG drawn)\n";

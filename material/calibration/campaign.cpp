@@ -93,6 +93,13 @@ const QuasiStaticTest* Campaign::quasi_static_calibration() const {
   return nullptr;
 }
 
+std::vector<const QuasiStaticTest*> Campaign::quasi_static_calibration_tests() const {
+  std::vector<const QuasiStaticTest*> out;
+  for (const auto& t : quasi_static)
+    if (t.use == TestUse::calibration) out.push_back(&t);
+  return out;
+}
+
 const DynamicTest* Campaign::dynamic_calibration() const {
   for (const auto& t : dynamic)
     if (t.use == TestUse::calibration) return &t;
@@ -139,8 +146,8 @@ Campaign read_campaign(const std::filesystem::path& manifest) {
       use = u->choice({"calibration", "validation"}) == "calibration" ? TestUse::calibration : TestUse::validation;
       if (*use == TestUse::calibration) {
         auto& first = kind == "quasi_static" ? qs_cal : dyn_cal;
-        if (first) u->fail("a second " + kind + " calibration test (" + *first + " already is one)");
-        first = t.path();
+        if (first && kind == "dynamic") u->fail("a second " + kind + " calibration test (" + *first + " already is one)");
+        if (!first) first = t.path();
       }
     }
     pending.push_back({kind, use, t});

@@ -7,7 +7,9 @@
 ///             {"kind": "dynamic", "file": "dyn_25.csv", "preload_strain": 0.25,
 ///              "acceleration_amplitude_m_s2": 0.25} ]}
 /// Optional per test: "name", "use": "calibration" | "validation" (default: the first test of each kind
-/// calibrates, the rest validate), "lateral": "free" | "constrained" (quasi-static only, default free).
+/// calibrates, the rest validate; several quasi-static tests may be marked "calibration": the first one
+/// listed carries the paper's method (steps 1-5), all of them the consistency refit; one dynamic
+/// calibration test at most), "lateral": "free" | "constrained" (quasi-static only, default free).
 /// File paths are relative to the manifest. Quasi-static CSV: time_s,displacement_mm,force_N
 /// (compression positive). Dynamic CSV: frequency_Hz plus one of {dynamic_modulus_kPa, phase_deg},
 /// {storage_modulus_kPa, loss_modulus_kPa}, {dynamic_stiffness_N_per_mm, phase_deg}
@@ -48,8 +50,10 @@ struct Campaign {
   Specimen specimen;
   std::vector<QuasiStaticTest> quasi_static;
   std::vector<DynamicTest> dynamic;
-  /// The calibration test of each kind (nullptr when the campaign has none of that kind).
+  /// The (first) calibration test of each kind (nullptr when the campaign has none of that kind).
   const QuasiStaticTest* quasi_static_calibration() const;
+  /// Every quasi-static test marked for calibration, in manifest order (the first is quasi_static_calibration()).
+  std::vector<const QuasiStaticTest*> quasi_static_calibration_tests() const;
   const DynamicTest* dynamic_calibration() const;
 };
 

@@ -74,6 +74,18 @@ std::shared_ptr<const material::Material> build_model(const ViscoHyperfoam& m) {
   return std::make_shared<const material::Viscoelastic>(base, m.prony, material::ModuliConvention::long_term);
 }
 
+std::string material_problem(const ViscoHyperfoam& m) {
+  double sum_mu = 0.0;  // the material-file rule (io/material_file.hpp): sum mu > 0
+  for (const auto& t : m.terms) sum_mu += t.mu;
+  if (!(sum_mu > 0.0)) return "hyperfoam: the initial shear modulus sum(mu) must be > 0";
+  try {
+    material::build_material(to_spec(m, "check", "", 0.0), "material");
+    return "";
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+}
+
 std::vector<material::PronyTerm> prony_from_long_term_ratios(const std::vector<double>& a, const std::vector<double>& tau) {
   if (a.size() != tau.size()) throw std::invalid_argument("prony_from_long_term_ratios: a and tau differ in length");
   double sum = 0.0;
@@ -119,23 +131,13 @@ DynamicModuli model_dynamic_moduli(const material::Material& model, const materi
     std::fill(F.begin(), F.end(), s.F);
     std::fill(S11.begin(), S11.end(), s.e.S(0));
   } else {
-    const double ramp_s = preload * schedule->thickness / (schedule->preload_rate_mm_min / 60.0);
+    const DynamicPath path = dynamic_path(preload, frequency, schedule, {});
     material::History h;
-    const int ramp_steps = std::max(1, static_cast<int>(std::ceil(ramp_s * 5.0)));
-    for (int k = 0; k <= ramp_steps; ++k) {
-      h.time.push_back(ramp_s * k / ramp_steps);
-      h.control.push_back(-preload * k / ramp_steps);
-    }
-    double t = ramp_s;
-    for (double f : frequency) {  // hold at the preload to each window centre (the sines are small)
-      const double centre = t + (schedule->cycles - 0.5 * schedule->fit_cycles) / f;
-      h.time.push_back(centre);
-      h.control.push_back(-preload);
-      t += schedule->cycles / f;
-    }
+    h.time = path.path.time;
+    for (double l : path.path.stretch) h.control.push_back(l - 1.0);
     const material::PointResult r = material::run_point(model, load_mode(lateral), h);
     for (std::size_t i = 0; i < frequency.size(); ++i) {
-      const std::size_t k = ramp_steps + 1 + i;
+      const std::size_t k = path.window[i];
       F[i] = r.F[k];
       S11[i] = r.P[k](0, 0) / r.F[k](0, 0);
     }
@@ -151,6 +153,71 @@ DynamicModuli model_dynamic_moduli(const material::Material& model, const materi
     d.loss.push_back(E.imag());
   }
   return d;
+}
+
+std::vector<double> strain_amplitudes(const DynamicTest& test, double thickness) {
+  std::vector<double> delta;
+  for (double f : test.moduli.frequency) {
+    const double w = 2.0 * std::numbers::pi * f;
+    delta.push_back(0.5 * test.acceleration_amplitude / (w * w) / thickness);
+  }
+  return delta;
+}
+
+DynamicPath dynamic_path(double preload, const std::vector<double>& frequency, const DynamicSchedule* schedule,
+                         const std::vector<double>& tau, const std::vector<double>& amplitude) {
+  std::vector<double> time, strain;
+  DynamicPath d;
+  d.relaxed = schedule == nullptr;
+  d.preload_stretch = 1.0 - preload;
+  d.frequency = frequency;
+  d.amplitude = amplitude;
+  if (d.relaxed) {
+    time = {0.0};
+    strain = {preload};
+    d.window.assign(frequency.size(), 0);
+  } else {
+    const double ramp_s = preload * schedule->thickness / (schedule->preload_rate_mm_min / 60.0);
+    const int ramp_steps = std::max(1, static_cast<int>(std::ceil(ramp_s * 5.0)));
+    for (int k = 0; k <= ramp_steps; ++k) {
+      time.push_back(ramp_s * k / ramp_steps);
+      strain.push_back(preload * k / ramp_steps);
+    }
+    double t = ramp_s;
+    for (double f : frequency) {  // hold at the preload to each window centre (the sines are small)
+      d.window.push_back(time.size());
+      time.push_back(t + (schedule->cycles - 0.5 * schedule->fit_cycles) / f);
+      strain.push_back(preload);
+      t += schedule->cycles / f;
+    }
+  }
+  d.path = make_uniaxial_path(time, strain, tau);
+  for (double f : frequency)
+    for (int h = 1; h <= 2; ++h) {
+      const double w = 2.0 * std::numbers::pi * f * h;
+      std::vector<cplx> weights;
+      for (double t : tau) weights.push_back(cplx(0.0, w * t) / cplx(1.0, w * t));
+      d.prony_weight.push_back(weights);
+    }
+  return d;
+}
+
+ContactSamples contact_samples(const QuasiStaticTest& test, const Segments& segments, const Specimen& specimen) {
+  const StressStrainRecord& rec = test.record;
+  const double strain_rate = test.rate / specimen.thickness;
+  const double t0 = rec.time[segments.load_begin] - rec.strain[segments.load_begin] / strain_rate;
+  ContactSamples c;
+  if (rec.strain[segments.load_begin] > 0.0) {
+    c.time.push_back(0.0);
+    c.strain.push_back(0.0);
+    c.stress.push_back(std::nan(""));
+  }
+  for (std::size_t i = segments.load_begin; i <= segments.unload_end; ++i) {
+    c.time.push_back(rec.time[i] - t0);
+    c.strain.push_back(rec.strain[i]);
+    c.stress.push_back(rec.stress[i]);
+  }
+  return c;
 }
 
 QuasiStaticProtocol protocol_of(const QuasiStaticTest& test, const Segments& segments, double sample_hz) {

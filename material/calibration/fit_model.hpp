@@ -18,6 +18,7 @@
 
 #include "material/calibration/campaign.hpp"
 #include "material/calibration/lab.hpp"
+#include "material/calibration/uniaxial_model.hpp"
 #include "material/io/material_file.hpp"
 
 namespace cushion::calibration {
@@ -32,6 +33,8 @@ struct ViscoHyperfoam {
 material::MaterialSpec to_spec(const ViscoHyperfoam& m, const std::string& name, const std::string& description,
                                double density);
 std::shared_ptr<const material::Material> build_model(const ViscoHyperfoam& m);
+/// Empty if a material file of `m` would be accepted by the reader, else the reader's reason.
+std::string material_problem(const ViscoHyperfoam& m);
 
 /// Relative moduli from moduli relative to the long-term modulus: g_i = a_i / (1 + sum a), and back.
 std::vector<material::PronyTerm> prony_from_long_term_ratios(const std::vector<double>& a, const std::vector<double>& tau);
@@ -61,6 +64,27 @@ struct DynamicSchedule {
   int cycles = 20;                    ///< cycles per frequency
   int fit_cycles = 10;                ///< last cycles measured (window centre = end - fit_cycles/(2 f))
 };
+
+/// The base path of the dynamic test along `schedule` (the sampling model_dynamic_moduli runs): the preload
+/// ramp in ceil(5 ramp seconds) increments, then one sample at each frequency's window centre; about a
+/// relaxed preload (`schedule` null) the single preload sample. Prony times tau [s] for the weights.
+/// `amplitude`: nominal strain amplitude per frequency (empty: the small-amplitude limit).
+DynamicPath dynamic_path(double preload, const std::vector<double>& frequency, const DynamicSchedule* schedule,
+                         const std::vector<double>& tau, const std::vector<double>& amplitude = {});
+
+/// Nominal strain amplitude [-] of the dynamic test's sine at each frequency: displacement a/(2 pi f)^2 over
+/// the thickness, a the PEAK acceleration = half the campaign's peak-to-peak acceleration_amplitude.
+std::vector<double> strain_amplitudes(const DynamicTest& test, double thickness);
+
+/// The in-contact part of a quasi-static record as a path from the start of loading: samples
+/// [load_begin, unload_end] (after a lift-off the platen no longer sets the strain), times from the start of
+/// loading, preceded by a relaxed zero-strain sample if the record starts compressed.
+struct ContactSamples {
+  std::vector<double> time;    ///< [s] from the start of loading
+  std::vector<double> strain;  ///< nominal compression [-]
+  std::vector<double> stress;  ///< measured nominal stress [MPa], compression positive (NaN at an added start)
+};
+ContactSamples contact_samples(const QuasiStaticTest& test, const Segments& segments, const Specimen& specimen);
 
 /// Storage and loss moduli [MPa] (nominal, per nominal strain) of `model` about the preload at
 /// frequencies [Hz], from Material::complex_tangent (see above): about the relaxed long-term state of

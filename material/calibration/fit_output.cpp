@@ -129,15 +129,21 @@ std::vector<PlotFiles> write_fit_outputs(const FitResult& R, const Campaign& cam
     const std::string provenance = "cushion fit of " + campaign.manifest.filename().string() + " (calibration tests " +
                                    R.quasi_static_name + ", " + R.dynamic_name + ")";
     const ViscoHyperfoam& refit_material = R.refit ? R.refit->material : R.paper_material;
-    material::write_material_file(
-        to_spec(R.paper_material, "foam_paper", provenance + ": the paper's method, Prony normalisation " +
-                                                    to_string(R.options.normalisation), density),
-        tmp / "material_paper.json");
-    material::write_material_file(
-        to_spec(refit_material, "foam_refit",
-                provenance + (R.refit ? ": consistency refit of the solver's model to both tests" : ": refit not run (paper's)"),
-                density),
-        tmp / "material_refit.json");
+    if (R.paper_problem.empty())
+      material::write_material_file(
+          to_spec(R.paper_material, "foam_paper", provenance + ": the paper's method, Prony normalisation " +
+                                                      to_string(R.run_normalisation), density),
+          tmp / "material_paper.json");
+    else
+      log << "fit: note: material_paper.json not written: " << R.paper_problem << "\n";
+    if (R.refit_problem.empty())
+      material::write_material_file(
+          to_spec(refit_material, "foam_refit",
+                  provenance + (R.refit ? ": consistency refit of the solver's model to both tests" : ": refit not run (paper's)"),
+                  density),
+          tmp / "material_refit.json");
+    else
+      log << "fit: note: material_refit.json not written: " << R.refit_problem << "\n";
     const bool refit_default = R.default_choice == DefaultMaterial::refit;
     material::write_material_file(
         to_spec(R.default_material, "foam", provenance + ": default = " + (refit_default ? "refit" : "paper") + " (" +

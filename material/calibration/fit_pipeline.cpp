@@ -38,6 +38,7 @@ std::string percent(double x) {
 FitResult fit_pipeline(const Campaign& campaign, const FitOptions& options, std::ostream& log) {
   FitResult R;
   R.options = options;
+  R.run_normalisation = options.normalisation;
   Stopwatch clock(R.timings);
   const QuasiStaticTest* qs = campaign.quasi_static_calibration();
   const DynamicTest* dyn = campaign.dynamic_calibration();
@@ -127,13 +128,23 @@ FitResult fit_pipeline(const Campaign& campaign, const FitOptions& options, std:
   const double qs_hz = std::min(10.0, sampling_rate(qs->record));  // reported predictions: up to 10 Hz
   for (PronyNormalisation n : {PronyNormalisation::paper, PronyNormalisation::tangent}) {
     const ViscoHyperfoam m{R.hyperfoam.terms, relative_moduli(R.conversion, n)};
-    const auto model = build_model(m);
     auto& d = n == PronyNormalisation::paper ? R.dynamic_normalisation_paper : R.dynamic_normalisation_tangent;
     auto& q = n == PronyNormalisation::paper ? R.quasi_static_normalisation_paper : R.quasi_static_normalisation_tangent;
-    d = predict_dynamic(*model, paper_base, *dyn, sched);
-    q = predict_quasi_static(*model, campaign.specimen, *qs, R.segments, qs_hz);
+    try {
+      const auto model = build_model(m);
+      d = predict_dynamic(*model, paper_base, *dyn, sched);
+      q = predict_quasi_static(*model, campaign.specimen, *qs, R.segments, qs_hz);
+    } catch (const std::exception& e) {  // e.g. E_inf = 0: the paper's g_i sum to 1
+      d.magnitude_rms = d.phase_rms = q.rms_error = q.max_error = std::nan("");
+      R.warnings.push_back("Prony normalisation " + to_string(n) + " gives no usable material: " + e.what());
+      log << "fit: warning: " << R.warnings.back() << "\n";
+      if (n == options.normalisation) R.run_normalisation = PronyNormalisation::tangent;
+      continue;
+    }
     if (n == options.normalisation) R.paper_material = m;
   }
+  if (R.run_normalisation != options.normalisation)
+    R.paper_material = {R.hyperfoam.terms, relative_moduli(R.conversion, R.run_normalisation)};
   log << "fit: [7] E_inf " << R.conversion.E_inf * 1e3 << " kPa, hyperfoam tangent at " << percent(dyn->preload_strain)
       << " K_hf " << R.conversion.preload.K_hf * 1e3 << " kPa (K_v " << R.conversion.preload.K_v * 1e3
       << " kPa); |E*| error paper/tangent normalisation " << percent(R.dynamic_normalisation_paper.magnitude_rms) << " / "
@@ -147,9 +158,9 @@ FitResult fit_pipeline(const Campaign& campaign, const FitOptions& options, std:
   R.default_choice = DefaultMaterial::paper;
   if (options.refit) {
     std::vector<QuasiStaticTarget> targets{{qs, R.segments}};
-    if (options.refit_all_quasi_static)
-      for (const auto& t : campaign.quasi_static)
-        if (&t != qs) targets.push_back({&t, detect_segments(t.record)});
+    for (const auto& t : campaign.quasi_static)
+      if (&t != qs && (options.refit_all_quasi_static || t.use == TestUse::calibration))
+        targets.push_back({&t, detect_segments(t.record)});
     R.refit = refit(R.paper_material, campaign.specimen, targets, *dyn, run_options.refit_options);
     const RefitResult& f = *R.refit;
     log << "fit: [8] refit on " << targets.size() << " quasi-static test(s) and " << dyn->name << " (" << f.iterations << " iterations, " << f.evaluations << " model runs, "
@@ -173,6 +184,17 @@ FitResult fit_pipeline(const Campaign& campaign, const FitOptions& options, std:
   } else {
     R.default_reason = "refit disabled (--no-refit)";
   }
+  // Never hand out a material the solver rejects (e.g. an unstable paper fit with sum mu <= 0).
+  R.paper_problem = material_problem(R.paper_material);
+  if (R.refit) R.refit_problem = material_problem(R.refit->material);
+  if (R.default_choice == DefaultMaterial::paper && !R.paper_problem.empty() && R.refit && R.refit_problem.empty()) {
+    R.default_material = R.refit->material;
+    R.default_choice = DefaultMaterial::refit;
+    R.default_reason += "; but the paper's material is not usable (" + R.paper_problem + "): the refit";
+  }
+  if ((R.default_choice == DefaultMaterial::paper ? R.paper_problem : R.refit_problem) != "")
+    throw std::runtime_error("fit: no usable material: paper's: " + R.paper_problem +
+                             (R.refit ? "; refit: " + R.refit_problem : std::string()));
   clock.lap("refit");
 
   // Every test of the campaign, paper's material vs refit.
@@ -184,7 +206,7 @@ FitResult fit_pipeline(const Campaign& campaign, const FitOptions& options, std:
     TestComparison c;
     c.name = t.name;
     c.kind = "quasi_static";
-    c.use = t.use == TestUse::calibration ? "calibration" : (options.refit_all_quasi_static ? "refit target" : "validation");
+    c.use = t.use == TestUse::calibration ? "calibration" : (options.refit && options.refit_all_quasi_static ? "refit target" : "validation");
     const Segments s = &t == qs ? R.segments : detect_segments(t.record);
     const double hz = std::min(10.0, sampling_rate(t.record));
     c.quasi_static_paper = predict_quasi_static(*paper_model, campaign.specimen, t, s, hz);

@@ -23,7 +23,7 @@ struct FitOptions {
   std::optional<double> nu = 0.0;      ///< fixed Poisson ratio; empty: fitted
   std::vector<double> tau = {0.01, 0.1, 1.0, 10.0, 100.0};  ///< Prony times [s]
   bool refit = true;                   ///< run step 8
-  bool refit_all_quasi_static = false; ///< step 8 on every quasi-static test (several rates), not only the calibration one
+  bool refit_all_quasi_static = false; ///< step 8 on every quasi-static test (several rates), not only the calibration ones
   DefaultMaterial default_material = DefaultMaterial::refit;  ///< the refit if accepted, else the paper's
   PronyNormalisation normalisation = PronyNormalisation::tangent;  ///< step 7 choice for the paper's material
   HereditaryFitOptions hereditary;
@@ -62,12 +62,14 @@ struct FitResult {
   PronyConversion conversion;
   DynamicPrediction dynamic_normalisation_paper, dynamic_normalisation_tangent;       ///< calibration dynamic test
   QuasiStaticPrediction quasi_static_normalisation_paper, quasi_static_normalisation_tangent;
-  ViscoHyperfoam paper_material;  ///< hyperfoam + Prony with options.normalisation
+  PronyNormalisation run_normalisation = PronyNormalisation::tangent;  ///< used (options' unless unusable)
+  ViscoHyperfoam paper_material;  ///< hyperfoam + Prony with run_normalisation
   // step 8
   std::optional<RefitResult> refit;
   ViscoHyperfoam default_material;
   DefaultMaterial default_choice = DefaultMaterial::paper;
   std::string default_reason;
+  std::string paper_problem, refit_problem;  ///< why a material file would be rejected (empty: usable; not written then)
   std::vector<TestComparison> comparisons;  ///< every test of the campaign
   std::vector<std::pair<std::string, double>> timings;  ///< stage, seconds
 };

@@ -73,6 +73,31 @@ HereditaryKernel hereditary_kernel(const std::vector<double>& time, const std::v
   return out;
 }
 
+std::vector<std::size_t> piecewise_linear_knots(const std::vector<double>& time, const std::vector<double>& strain,
+                                                double tolerance) {
+  const std::size_t n = time.size();
+  std::vector<std::size_t> knots;
+  if (n == 0) return knots;
+  knots.push_back(0);
+  std::size_t i = 0;
+  while (i + 1 < n) {
+    // Extend the chord from i to j while every sample between lies within the tolerance.
+    std::size_t j = i + 1;
+    while (j + 1 < n) {
+      const std::size_t next = j + 1;
+      const double slope = (strain[next] - strain[i]) / (time[next] - time[i]);
+      bool fits = true;
+      for (std::size_t k = i + 1; k < next && fits; ++k)
+        fits = std::abs(strain[i] + slope * (time[k] - time[i]) - strain[k]) <= tolerance;
+      if (!fits) break;
+      j = next;
+    }
+    knots.push_back(j);
+    i = j;
+  }
+  return knots;
+}
+
 std::vector<double> hereditary_stress(const std::vector<double>& time, const std::vector<double>& strain,
                                       const std::vector<HereditaryMode>& modes,
                                       const std::vector<double>& query_times) {

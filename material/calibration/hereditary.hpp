@@ -40,6 +40,14 @@ struct HereditaryKernel {
 HereditaryKernel hereditary_kernel(const std::vector<double>& time, const std::vector<double>& strain,
                                    cplx beta, const std::vector<double>& query_times);
 
+/// Indices of the samples where a piecewise-linear history (time [s] increasing, strain [-]) changes slope:
+/// the first and last samples and every sample the chord between its neighbouring kept samples misses by
+/// more than `tolerance` [-] (greedy, each chord as long as possible). The kernel over the kept samples equals
+/// the kernel over all of them to within `tolerance` times the residues (exactly for collinear samples), at
+/// a cost proportional to the number of pieces instead of samples.
+std::vector<std::size_t> piecewise_linear_knots(const std::vector<double>& time, const std::vector<double>& strain,
+                                                double tolerance);
+
 /// Viscoelastic stress sigma_v(t_q) [MPa], nominal, compression positive (convention above).
 std::vector<double> hereditary_stress(const std::vector<double>& time, const std::vector<double>& strain,
                                       const std::vector<HereditaryMode>& modes,

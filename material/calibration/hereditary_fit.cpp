@@ -173,6 +173,19 @@ HereditaryFit fit_hereditary(const StressStrainRecord& r, const Segments& s, con
     throw std::invalid_argument(r.source + ": only " + std::to_string(p.t1.size()) +
                                 " loading/unloading pairs: too few to fit " + std::to_string(4 * M) + " parameters");
   const std::vector<double> measured = measured_difference_stress(r, p);
+  // The kernels run over the slope changes of the strain history only (collinear samples add nothing), up
+  // to the last paired time: far fewer pieces than samples (a few for a constant-rate test).
+  StressStrainRecord knots;
+  {
+    const double last = *std::max_element(p.t2.begin(), p.t2.end());
+    std::size_t end = 1;
+    while (end < r.time.size() && r.time[end - 1] < last) ++end;
+    const std::vector<double> time(r.time.begin(), r.time.begin() + end), strain(r.strain.begin(), r.strain.begin() + end);
+    for (std::size_t k : piecewise_linear_knots(time, strain, 1e-6 * std::max(s.peak_strain, 1e-3))) {
+      knots.time.push_back(time[k]);
+      knots.strain.push_back(strain[k]);
+    }
+  }
   const double T = r.time[s.unload_end] - r.time[s.load_begin];
   const double peak = std::max(s.peak_stress, std::numeric_limits<double>::min());
   const double beta_max = o.beta_max_factor / T, alpha_max = o.alpha_max_factor;
@@ -215,7 +228,7 @@ HereditaryFit fit_hereditary(const StressStrainRecord& r, const Segments& s, con
     }
     {
       ceres::Problem problem;
-      problem.AddResidualBlock(new ProjectedCost(r, p, y, M), nullptr, b.data());
+      problem.AddResidualBlock(new ProjectedCost(knots, p, y, M), nullptr, b.data());
       for (int j = 0; j < 2 * M; ++j) {
         problem.SetParameterLowerBound(b.data(), j, 0.0);
         problem.SetParameterUpperBound(b.data(), j, beta_max);
@@ -226,7 +239,7 @@ HereditaryFit fit_hereditary(const StressStrainRecord& r, const Segments& s, con
     std::vector<cplx> projected_betas;
     for (int i = 0; i < M; ++i) projected_betas.emplace_back(b[2 * i], b[2 * i + 1]);
     // Stage 2: all 4M parameters from the projected solution (residues by linear least squares).
-    std::vector<HereditaryMode> init = best_residues(r, p, y, projected_betas);
+    std::vector<HereditaryMode> init = best_residues(knots, p, y, projected_betas);
     std::vector<double> x(4 * M);
     for (int i = 0; i < M; ++i) {
       x[4 * i] = std::clamp(init[i].alpha.real(), -alpha_max, alpha_max);
@@ -235,7 +248,7 @@ HereditaryFit fit_hereditary(const StressStrainRecord& r, const Segments& s, con
       x[4 * i + 3] = init[i].beta.imag();
     }
     ceres::Problem problem;
-    problem.AddResidualBlock(new DifferenceStressCost(r, p, y, M), nullptr, x.data());
+    problem.AddResidualBlock(new DifferenceStressCost(knots, p, y, M), nullptr, x.data());
     for (int i = 0; i < M; ++i) {
       for (int j = 0; j < 2; ++j) {
         problem.SetParameterLowerBound(x.data(), 4 * i + j, -alpha_max);

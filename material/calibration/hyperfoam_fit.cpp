@@ -8,23 +8,17 @@
 #include <limits>
 #include <stdexcept>
 
+#include "material/calibration/uniaxial_model.hpp"
 #include "material/stability.hpp"
 
 namespace cushion::calibration {
 namespace {
 
-/// Compression-positive model stress at strain e for one term: -(2 mu/alpha)(l^(a-1) - l^(-a c - 1)),
-/// c = nu (free) or nu/(1-2nu) (constrained).
+/// Compression-positive nominal stress -l S11 at strain e for one term (uniaxial_model.hpp).
 template <typename T>
 T term_stress(const T& mu, const T& alpha, const T& c, double e) {
   const double l = 1.0 - e;
-  using std::pow;
-  return -(2.0 * mu / alpha) * (pow(T(l), alpha - 1.0) - pow(T(l), -alpha * c - 1.0));
-}
-
-template <typename T>
-T lateral_exponent(const T& nu, Lateral lateral) {
-  return lateral == Lateral::free ? nu : nu / (1.0 - 2.0 * nu);
+  return -l * term_S11(mu, alpha, c, l);
 }
 
 struct CurveResidual {

@@ -231,15 +231,21 @@ DynamicRecord run_dynamic(const material::Material& model, const LabSpecimen& sp
     const double f = p.frequencies_Hz[i];
     const double t_end = start[i] + p.cycles / f;
     const double t_begin = t_end - p.fit_cycles / f;
-    std::vector<double> ts, strain, stress;
+    std::vector<double> ts, strain, force;
     for (std::size_t k = 0; k < r.time.size(); ++k) {
       if (r.time[k] < t_begin - 1e-9 || r.time[k] > t_end + 1e-9) continue;
-      double force = -r.P[k](0, 0) * specimen.area();
-      if (noisy) force += std::hypot(noise.force_relative * force, noise.force_floor) * g.next();
       ts.push_back(r.time[k] - start[i]);
       strain.push_back(-history.control[k]);
-      stress.push_back(force / specimen.area());
+      force.push_back(-r.P[k](0, 0) * specimen.area());
     }
+    if (noisy) {
+      // Noise relative to the oscillating force (the load cell's dynamic reading), not to the static preload.
+      const double amplitude = std::abs(fit_sine(ts, force, f).phasor);
+      const double sd = std::hypot(noise.force_relative * amplitude, noise.force_floor);
+      for (double& x : force) x += sd * g.next();
+    }
+    std::vector<double> stress(force.size());
+    for (std::size_t k = 0; k < force.size(); ++k) stress[k] = force[k] / specimen.area();
     const std::complex<double> E = fit_sine(ts, stress, f).phasor / fit_sine(ts, strain, f).phasor;  // MPa
     rec.frequency_Hz.push_back(f);
     rec.dynamic_modulus_kPa.push_back(std::abs(E) * 1000.0);

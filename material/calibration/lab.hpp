@@ -34,7 +34,9 @@ struct LabSpecimen {
 
 struct LabNoise {
   unsigned long long seed = 1;
-  double force_relative = 0.0;  ///< standard deviation as a fraction of the force reading [-]
+  /// Standard deviation as a fraction [-] of the force reading (quasi-static), or of the amplitude of the
+  /// oscillating force (dynamic: a load cell's error on the dynamic reading, not on the static preload).
+  double force_relative = 0.0;
   double force_floor = 0.0;     ///< additional absolute standard deviation [N]
 };
 

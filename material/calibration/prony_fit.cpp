@@ -25,10 +25,13 @@ Eigen::MatrixXd design(const DynamicModuli& d, const std::vector<double>& tau) {
   return A;
 }
 
+
+}  // namespace
+
 /// Non-negative least squares min |A x - b| s.t. x >= 0 by the Lawson-Hanson active-set method
 /// (Eigen 3.4 in Debian has no NNLS module, and Ceres' projected trust region stalled on this
 /// ill-conditioned problem far from the KKT point). Columns are scaled to unit norm first.
-Eigen::VectorXd nnls(const Eigen::MatrixXd& A0, const Eigen::VectorXd& b) {
+Eigen::VectorXd non_negative_least_squares(const Eigen::MatrixXd& A0, const Eigen::VectorXd& b) {
   const Eigen::Index n = A0.cols();
   Eigen::VectorXd scale = A0.colwise().norm().transpose();
   for (Eigen::Index j = 0; j < n; ++j) scale(j) = scale(j) > 0.0 ? scale(j) : 1.0;
@@ -78,8 +81,6 @@ Eigen::VectorXd nnls(const Eigen::MatrixXd& A0, const Eigen::VectorXd& b) {
   return x.cwiseQuotient(scale);
 }
 
-}  // namespace
-
 DynamicModuli prony_moduli(double E_inf, const std::vector<double>& E, const std::vector<double>& tau,
                            const std::vector<double>& frequency) {
   DynamicModuli d;
@@ -120,7 +121,7 @@ PronyFit fit_prony(const DynamicModuli& d, const std::vector<double>& tau) {
   fit.tau = tau;
   if (x.minCoeff() < 0.0) {
     fit.bounds_active = true;
-    x = nnls(A, ones);
+    x = non_negative_least_squares(A, ones);
   }
   fit.E_inf = x(0);
   fit.E.assign(x.data() + 1, x.data() + x.size());

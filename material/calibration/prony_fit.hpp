@@ -7,6 +7,7 @@
 ///   chi2 = sum_i [ (E'(w_i)/Ebar'_i - 1)^2 + (E''(w_i)/Ebar''_i - 1)^2 ],
 /// linear in x = (E_inf, E_1..E_n) with x >= 0. Solved by rank-revealing QR; if that solution has a
 /// negative modulus, by the Lawson-Hanson active-set NNLS (exact; Eigen 3.4 has no NNLS module).
+#include <Eigen/Dense>
 #include <vector>
 
 namespace cushion::calibration {
@@ -39,6 +40,9 @@ struct PronyFit {
   bool bounds_active = false;   ///< the unconstrained solution had a negative modulus (NNLS path)
   std::vector<PronyResidual> residuals;
 };
+
+/// min |A x - b| subject to x >= 0 (Lawson-Hanson active set, columns scaled to unit norm first).
+Eigen::VectorXd non_negative_least_squares(const Eigen::MatrixXd& A, const Eigen::VectorXd& b);
 
 /// Fits (E_inf, E_r) for preset times tau [s]; throws std::invalid_argument on fewer than 3
 /// frequencies, non-positive frequency or moduli, or tau empty/non-positive.

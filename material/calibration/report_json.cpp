@@ -63,7 +63,7 @@ nlohmann::json report_json(const FitResult& R, const Campaign& campaign) {
   j["options"] = {{"terms", R.options.terms}, {"nu", R.options.nu ? json(*R.options.nu) : json("fit")},
                   {"tau_s", R.options.tau}, {"refit", R.options.refit},
                   {"default", R.options.default_material == DefaultMaterial::paper ? "paper" : "refit"},
-                  {"normalisation", to_string(R.options.normalisation)}};
+                  {"normalisation", to_string(R.run_normalisation)}};
   const Segments& s = R.segments;
   j["segments"] = {{"peak_strain", s.peak_strain}, {"peak_stress_kPa", s.peak_stress * 1e3},
                    {"hold_s", s.hold_duration}, {"lift_off", s.lift_off}, {"lift_off_strain", s.lift_off_strain},
@@ -112,7 +112,7 @@ nlohmann::json report_json(const FitResult& R, const Campaign& campaign) {
       {"tangent", {{"g", gs(c.tangent)}, {"a_long_term", c.a_tangent},
                    {"dynamic", dynamic_json(R.dynamic_normalisation_tangent)},
                    {"quasi_static", quasi_static_json(R.quasi_static_normalisation_tangent)}}},
-      {"chosen", to_string(R.options.normalisation)}};
+      {"chosen", to_string(R.run_normalisation)}};
   j["material_paper"] = material_json(R.paper_material);
   if (R.refit) {
     const RefitResult& f = *R.refit;
@@ -123,6 +123,8 @@ nlohmann::json report_json(const FitResult& R, const Campaign& campaign) {
                   {"dynamic_rms_start", f.dynamic_rms_start}, {"dynamic_rms", f.dynamic_rms},
                   {"cost_start", f.cost_start}, {"cost", f.cost}, {"stability", f.stability}, {"ceres", f.report}};
   }
+  j["warnings"] = R.warnings;
+  j["material_problems"] = {{"paper", R.paper_problem}, {"refit", R.refit_problem}};
   j["default"] = {{"material", R.default_choice == DefaultMaterial::paper ? "paper" : "refit"}, {"reason", R.default_reason}};
   json tests = json::array();
   for (const auto& t : R.comparisons) {

@@ -100,7 +100,7 @@ std::string report_markdown(const FitResult& R, const Campaign& campaign, const 
     << " | " << pct(R.quasi_static_normalisation_paper.rms_error) << " |\n";
   o << "| (b) tangent | " << pct(R.dynamic_normalisation_tangent.magnitude_rms) << " | "
     << num(R.dynamic_normalisation_tangent.phase_rms) << " | " << pct(R.quasi_static_normalisation_tangent.rms_error) << " |\n";
-  o << "\nThe paper's material uses (" << (R.options.normalisation == PronyNormalisation::paper ? "a" : "b")
+  o << "\nThe paper's material uses (" << (R.run_normalisation == PronyNormalisation::paper ? "a" : "b")
     << "): (b) makes the solver's dynamic modulus at the preload equal to the measured one (up to K_hf - E_inf in the "
        "storage modulus), (a) scales the viscous part by K_v / E_inf = "
     << num(c.preload.K_v / c.E_inf) << ".\n";

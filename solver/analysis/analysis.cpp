@@ -7,19 +7,21 @@
 
 #include "material/input_error.hpp"
 #include "solver/analysis/boundary.hpp"
+#include "solver/contact/contact_contributor.hpp"
 
 namespace cushion::solver {
 
 namespace {
 
 LinearSolverKind linear_solver_kind(const CaseSpec& spec) {
-  const bool fbar = spec.mesh.formulation == HexFormulation::fbar;
+  // F-bar and frictional contact tangents are unsymmetric.
+  const bool fbar = spec.mesh.formulation == HexFormulation::fbar || case_has_friction(spec);
   switch (spec.solver.linear_solver) {
     case SolverSpec::LinearSolver::cholmod:
       if (fbar)
         throw InputError(spec.file.string() +
-                         ": solver.linear_solver: \"cholmod\" needs a symmetric tangent; F-bar tangents are "
-                         "unsymmetric (use \"auto\" or \"umfpack\")");
+                         ": solver.linear_solver: \"cholmod\" needs a symmetric tangent; F-bar and frictional "
+                         "contact tangents are unsymmetric (use \"auto\" or \"umfpack\")");
       return LinearSolverKind::cholesky;
     case SolverSpec::LinearSolver::umfpack: return LinearSolverKind::lu;
     case SolverSpec::LinearSolver::automatic: break;

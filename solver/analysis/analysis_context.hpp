@@ -17,6 +17,8 @@
 
 namespace cushion::solver {
 
+class ResidualContributor;  // step.hpp
+
 /// Cost counters of a run (times are wall-clock seconds).
 struct SolverStats {
   int increments = 0;            ///< converged increments
@@ -78,6 +80,8 @@ class AnalysisContext {
   std::vector<bool> constrained;     ///< constrained DOFs of the last step (all false before the first)
   StateStore state;                  ///< committed material state of every point
   double time = 0.0;                 ///< total time [s]
+  /// Extra equilibrium terms that persist from step to step (e.g. contact, by "contact:<name>").
+  std::map<std::string, std::shared_ptr<ResidualContributor>> contributors;
 
   /// Seconds since the context was created.
   double elapsed() const;

@@ -6,7 +6,9 @@
 
 #include "solver/analysis/boundary.hpp"
 #include "solver/analysis/increment_control.hpp"
+#include "solver/analysis/steady_state_step.hpp"
 #include "solver/analysis/step.hpp"
+#include "solver/contact/contact_contributor.hpp"
 #include "solver/output/interrupt.hpp"
 
 namespace cushion::solver {
@@ -73,6 +75,8 @@ void QuasiStaticStep::run(AnalysisContext& ctx) {
   const DofMap& dofs = assembler.dofs();
   const double t0 = ctx.time, period = spec_.period;
   const StepBoundary boundary(ctx.mesh, spec_, ctx.spec.amplitudes, t0, ctx.u);
+  std::vector<std::shared_ptr<ResidualContributor>> contributors = contributors_;
+  for (auto& c : step_contacts(ctx, spec_, dofs)) contributors.push_back(std::move(c));
 
   // DOFs constrained in the previous step and free now: their reaction becomes an external force
   // ramped linearly to zero over the step (ABAQUS behaviour when a boundary condition is removed).
@@ -118,16 +122,35 @@ void QuasiStaticStep::run(AnalysisContext& ctx) {
 
     EquilibriumProblem problem(assembler, ctx.state, ctx.u, u_new, f_ext, dt_material);
     const IncrementInfo info{&spec_, t0 + t_begin, t0 + t_end, dt_material};
-    for (auto& c : contributors_) c->begin_increment(info, problem);
+    for (auto& c : contributors) c->begin_increment(info, problem);
     ctx.log << "  increment " << control.increments() + 1 << ": t = " << t0 + t_end << " s, dt = " << dt << " s\n";
     options.reference_force = control.increments() ? q_sum / control.increments() : 0.0;
     Eigen::VectorXd x = dofs.gather_free(ctx.u);
     last = solve_increment(problem, *system.linear, x, options, prescribed, ctx);
+    // Augmented-Lagrangian (Uzawa) updates of the contributors: solve again until none changes.
+    for (bool again = true; last.converged() && again;) {
+      again = false;
+      std::string failure;
+      for (auto& c : contributors) again = c->update_after_solve(failure) || again;
+      if (!failure.empty()) {
+        ctx.state.revert();
+        for (auto& c : contributors) c->revert();
+        throw AnalysisError("step '" + spec_.name + "' at t = " + fmt("%.6g", t0 + t_end) + " s: " + failure +
+                            "; frames written so far are complete (up to t = " +
+                            fmt("%.6g", ctx.output.last_frame_time()) + " s)");
+      }
+      if (!again) break;
+      const int before = last.iterations;
+      TimedProblem timed_problem(problem, ctx.stats);
+      last = solve_newton(timed_problem, *system.linear, x, options,
+                          [&](const NewtonIterate& it) { ctx.log << "    " << format_iterate(it) << "\n"; });
+      last.iterations += before;
+    }
     const double residual = last.history.empty() ? NAN : last.history.back().residual_max;
 
     if (!last.converged()) {
       ctx.state.revert();
-      for (auto& c : contributors_) c->revert();
+      for (auto& c : contributors) c->revert();
       ++ctx.stats.cutbacks;
       const std::string reason = to_string(last.outcome) + (last.message.empty() ? "" : ": " + last.message);
       const bool retry = control.cut_back(last.dt_factor);
@@ -138,15 +161,16 @@ void QuasiStaticStep::run(AnalysisContext& ctx) {
       if (ctx.progress) *ctx.progress << line << std::endl;
       if (!retry) {
         const IncrementLimits& l = control.limits();
-        std::string why = control.cutbacks_in_row() > l.max_cutbacks
-                              ? "no convergence after " + std::to_string(l.max_cutbacks) + " cut-backs in a row"
-                              : "no convergence";
-        why += " (increment " + fmt("%.4g", control.increment()) + " s" +
-               (control.increment() < l.min * (1.0 - 1e-12) ? " < minimum " : ", minimum ") + fmt("%.4g", l.min) +
-               " s)";
+        const bool too_small = control.increment() < l.min * (1.0 - 1e-12);
+        const std::string why =
+            "no convergence after " + std::to_string(control.cutbacks_in_row()) + " cut-backs in a row (" +
+            (too_small ? "increment " + fmt("%.4g", control.increment()) + " s < minimum " + fmt("%.4g", l.min) + " s"
+                       : "max_cutbacks = " + std::to_string(l.max_cutbacks)) +
+            ")";
         throw AnalysisError("step '" + spec_.name + "' at t = " + fmt("%.6g", t0 + t_begin) + " s: " + why +
-                            "; last attempt " + reason + "; last residual " + fmt("%.3e", residual) +
-                            " N; frames written so far are complete (up to t = " +
+                            "; last attempt " + reason +
+                            (std::isnan(residual) ? std::string() : "; last residual " + fmt("%.3e", residual) + " N") +
+                            "; frames written so far are complete (up to t = " +
                             fmt("%.6g", ctx.output.last_frame_time()) + " s)");
       }
       continue;
@@ -159,11 +183,11 @@ void QuasiStaticStep::run(AnalysisContext& ctx) {
       timed(ctx.stats.assembly_time,
             [&] { assembler.assemble(ctx.u, problem.u(), dt_material, ctx.state, f_scratch, nullptr, &points); });
       FrameData frame = make_frame(t0 + t_end, assembler, points, problem.u(), problem.f_int());
-      for (auto& c : contributors_) c->add_frame_fields(frame);
+      for (auto& c : contributors) c->add_frame_fields(frame);
       ctx.output.write_frame(std::move(frame));
     }
     ctx.state.commit();
-    for (auto& c : contributors_) c->commit();
+    for (auto& c : contributors) c->commit();
     ctx.u = problem.u();
     ctx.f_int = problem.f_int();
     ctx.time = t0 + t_end;
@@ -188,6 +212,9 @@ void QuasiStaticStep::run(AnalysisContext& ctx) {
           << " cut-backs\n";
 }
 
-std::unique_ptr<Step> make_step(const StepSpec& spec) { return std::make_unique<QuasiStaticStep>(spec); }
+std::unique_ptr<Step> make_step(const StepSpec& spec) {
+  if (spec.type == StepSpec::Type::steady_state) return make_steady_state_step(spec);
+  return std::make_unique<QuasiStaticStep>(spec);
+}
 
 }  // namespace cushion::solver

@@ -29,6 +29,9 @@ class ResidualContributor {
  public:
   virtual ~ResidualContributor() = default;
   virtual void begin_increment(const IncrementInfo& increment, EquilibriumProblem& problem) = 0;
+  /// After a converged Newton solve: true if the term was updated (e.g. augmented-Lagrangian
+  /// multipliers) and the increment must be solved again; sets `failure` if it cannot be satisfied.
+  virtual bool update_after_solve(std::string& failure) { return false; }
   virtual void commit() {}  ///< accept the trial state of the attempt (e.g. stick points)
   virtual void revert() {}  ///< drop it
   /// Extra arrays for a frame (e.g. contact pressure per node, FrameData::point_fields).
@@ -69,7 +72,8 @@ class QuasiStaticStep final : public Step {
   std::vector<std::shared_ptr<ResidualContributor>> contributors_;
 };
 
-/// The Step for a case-file step (static and visco: QuasiStaticStep).
+/// The Step for a case-file step (static and visco: QuasiStaticStep; steady_state: SteadyStateStep,
+/// steady_state_step.hpp).
 std::unique_ptr<Step> make_step(const StepSpec& spec);
 
 /// A step could not be completed (no convergence within the allowed cut-backs, too many

@@ -299,12 +299,112 @@ OutputSpec parse_output(const Obj& o, const CaseSpec& spec) {
   return out;
 }
 
+Vec3 vec3(const Obj& o, const std::string& key, std::size_t n = 3) {
+  const auto v = o.numbers(key, n, n);
+  Vec3 out = Vec3::Zero();
+  for (std::size_t i = 0; i < n; ++i) out(static_cast<int>(i)) = v[i];
+  return out;
+}
+
+/// "indenter": the keys allowed depend on "type" (contact_spec.hpp).
+IndenterSpec parse_indenter(const json& value, const Context& ctx, const std::string& path) {
+  IndenterSpec in;
+  if (!value.is_object()) io::JsonNode(value, ctx.source, path).fail("must be an object {\"type\": ...}");
+  const std::string type = io::JsonNode(value, ctx.source, path)
+                               .at("type")
+                               .choice({"plane", "sphere", "cylinder", "flat_punch", "sitbar", "stl"});
+  const auto allowed = [&](std::vector<std::string> keys) {
+    keys.push_back("type");
+    return Obj(value, ctx, path, keys);
+  };
+  if (type == "plane") {
+    const Obj p = allowed({"point_mm", "normal"});
+    in.type = IndenterSpec::Type::plane, in.point = vec3(p, "point_mm"), in.direction = vec3(p, "normal");
+    if (in.direction.norm() == 0.0) p.fail("normal", "must not be zero");
+  } else if (type == "sphere") {
+    const Obj p = allowed({"centre_mm", "radius_mm"});
+    in.type = IndenterSpec::Type::sphere, in.point = vec3(p, "centre_mm"), in.radius = p.positive("radius_mm");
+  } else if (type == "cylinder") {
+    const Obj p = allowed({"point_mm", "axis", "radius_mm"});
+    in.type = IndenterSpec::Type::cylinder, in.point = vec3(p, "point_mm"), in.direction = vec3(p, "axis");
+    in.radius = p.positive("radius_mm");
+    if (in.direction.norm() == 0.0) p.fail("axis", "must not be zero");
+  } else if (type == "flat_punch") {
+    const Obj p = allowed({"centre_mm", "bottom_z_mm", "radius_mm", "edge_radius_mm"});
+    in.type = IndenterSpec::Type::flat_punch;
+    in.point = vec3(p, "centre_mm", 2);
+    in.point.z() = p.number("bottom_z_mm");
+    in.radius = p.positive_or("radius_mm", 100.0);
+    in.edge_radius = p.positive_or("edge_radius_mm", 1.0);
+    if (in.edge_radius > in.radius) p.fail("edge_radius_mm", "must not exceed radius_mm");
+  } else if (type == "sitbar") {
+    const Obj p = allowed({"lowest_z_mm", "spacing_mm", "a_mm", "b_mm", "c_mm", "blend_mm", "plate_x_mm",
+                           "plate_y_mm", "plate_edge_mm", "centre_mm"});
+    in.type = IndenterSpec::Type::sitbar;
+    SitBarShape& s = in.sitbar;
+    if (p.has("lowest_z_mm")) s.lowest_z = p.number("lowest_z_mm");
+    if (p.has("spacing_mm")) s.it_spacing = p.number("spacing_mm");
+    if (s.it_spacing < 0.0) p.fail("spacing_mm", "must be >= 0");
+    s.a = p.positive_or("a_mm", s.a), s.b = p.positive_or("b_mm", s.b), s.c = p.positive_or("c_mm", s.c);
+    s.blend = p.positive_or("blend_mm", s.blend);
+    s.plate_x = p.positive_or("plate_x_mm", s.plate_x), s.plate_y = p.positive_or("plate_y_mm", s.plate_y);
+    s.plate_edge = p.positive_or("plate_edge_mm", s.plate_edge);
+    if (2 * s.plate_edge >= std::min(s.plate_x, s.plate_y)) p.fail("plate_edge_mm", "must be less than half the plate size");
+    if (p.has("centre_mm")) {
+      const Vec3 c = vec3(p, "centre_mm", 2);
+      s.centre_x = c.x(), s.centre_y = c.y();
+    }
+  } else {
+    const Obj p = allowed({"file"});
+    in.type = IndenterSpec::Type::stl, in.stl_file = p.file("file");
+  }
+  return in;
+}
+
+ContactSpec parse_contact(const Obj& o, const CaseSpec& spec, const StepSpec& step) {
+  ContactSpec c;
+  c.key = o.here();
+  c.name = o.string("name");
+  if (c.name.empty() || c.name.find_first_of(" ,\"/") != std::string::npos)
+    o.fail("name", "must be a non-empty name without spaces, commas, quotes or slashes");
+  for (const ContactSpec& other : step.contact)
+    if (other.name == c.name) o.fail("name", "duplicate contact name \"" + c.name + "\" in this step");
+  c.set = o.string("set");
+  if (!spec.sets.count(c.set) && spec.mesh.source != MeshSpec::Source::inp)
+    o.fail("set", "unknown set \"" + c.set + "\" (define it under \"sets\")");
+  c.indenter = parse_indenter(o.raw("indenter"), o.ctx(), o.path("indenter"));
+  c.motion = vec3(o, "motion_mm");
+  if (o.has("amplitude")) {
+    c.amplitude = o.string("amplitude");
+    if (!spec.amplitudes.count(*c.amplitude))
+      o.fail("amplitude", "unknown amplitude \"" + *c.amplitude + "\" (define it under \"amplitudes\")");
+  }
+  ContactParameters& p = c.parameters;
+  p.penalty = o.positive_or("penalty_MPa_per_mm", p.penalty);
+  p.tangential_penalty = o.positive_or("tangential_penalty_MPa_per_mm", 0.1 * p.penalty);
+  if (o.has("friction")) p.friction = o.number("friction");
+  if (p.friction < 0.0) o.fail("friction", "must be >= 0");
+  p.tolerance = o.positive_or("tolerance_mm", p.tolerance);
+  if (o.has("max_augmentations")) p.max_augmentations = static_cast<int>(o.integer("max_augmentations", 0));
+  c.force_factor = o.positive_or("force_factor", 1.0);
+  return c;
+}
+
 StepSpec parse_step(const Obj& o, const CaseSpec& spec) {
   StepSpec step;
-  if (o.has("contact")) o.fail("contact", "contact is not supported yet");
   step.name = o.string("name");
   const std::string type = o.at("type").string();
-  if (type == "steady_state") o.fail("type", "\"steady_state\" steps are not supported yet");
+  if (type == "steady_state") {  // a linear perturbation step: solver/dynamics/steady_state_spec.hpp
+    for (const char* k : {"long_term", "time_period_s", "increment", "boundary", "contact", "output"})
+      if (o.has(k)) o.fail(k, "does not apply to a \"steady_state\" step (see its \"steady_state\" object)");
+    step.type = StepSpec::Type::steady_state;
+    step.steady_state = dynamics::parse_steady_state_spec(
+        o.raw("steady_state"), o.ctx().source, o.path("steady_state"),
+        [&](const std::string& set) { return spec.sets.count(set) > 0 || spec.mesh.source == MeshSpec::Source::inp; },
+        spec.steps.empty());
+    return step;
+  }
+  if (o.has("steady_state")) o.fail("steady_state", "applies to \"steady_state\" steps only");
   step.type = o.choice("type", {"static", "visco"}) == "visco" ? StepSpec::Type::visco : StepSpec::Type::static_;
   if (o.has("long_term")) {
     if (step.type != StepSpec::Type::static_) o.fail("long_term", "applies to \"static\" steps only");
@@ -323,6 +423,16 @@ StepSpec parse_step(const Obj& o, const CaseSpec& spec) {
     const std::string path = o.path("boundary") + "[" + std::to_string(i) + "]";
     step.boundary.push_back(parse_boundary(
         Obj(o.raw("boundary")[i], o.ctx(), path, {"set", "type", "dof", "value_mm", "amplitude"}), spec));
+  }
+  if (o.has("contact")) {
+    const io::JsonNode contacts = o.at("contact");
+    const std::size_t nc = contacts.expect_array(0, 100);
+    for (std::size_t i = 0; i < nc; ++i)
+      step.contact.push_back(parse_contact(
+          Obj(o.raw("contact")[i], o.ctx(), o.path("contact") + "[" + std::to_string(i) + "]",
+              {"name", "set", "indenter", "motion_mm", "amplitude", "penalty_MPa_per_mm",
+               "tangential_penalty_MPa_per_mm", "friction", "tolerance_mm", "max_augmentations", "force_factor"}),
+          spec, step));
   }
   if (o.has("output")) {
     const Obj out(o.raw("output"), o.ctx(), o.path("output"), {"frames_every_s", "frame_every_increments", "history"});
@@ -405,7 +515,7 @@ CaseSpec parse_case_json(const std::string& text, const std::filesystem::path& f
   for (std::size_t i = 0; i < n; ++i)
     spec.steps.push_back(parse_step(Obj(top.raw("steps")[i], ctx, "steps[" + std::to_string(i) + "]",
                                         {"name", "type", "long_term", "time_period_s", "increment", "boundary",
-                                         "contact", "output"}),
+                                         "contact", "output", "steady_state"}),
                                     spec));
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t k = 0; k < i; ++k)

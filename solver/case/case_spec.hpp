@@ -25,7 +25,8 @@
 ///   "steps": [ {                                                 run in order, total time accumulates
 ///     "name": "load",
 ///     "type": "static" | "visco",        static: rate-independent; visco: viscous relaxation in time
-///                                        ("steady_state" is reserved: "not supported yet")
+///                                        "steady_state": frequency sweep about the previous step's end
+///                                        state; its keys: solver/dynamics/steady_state_spec.hpp
 ///     "long_term"?: false,               static only: fully relaxed (long-term) moduli (*STATIC, LONG TERM)
 ///     "time_period_s": T,                > 0 [s]
 ///     "increment"?: {"initial_s"? = T, "min_s"? = 1e-5 T, "max_s"? = T, "max_increments"? = 100},
@@ -39,7 +40,7 @@
 ///        {"set": "sym_x", "type": "symmetry_x" | "symmetry_y" | "symmetry_z"}   u_x (u_y, u_z) = 0
 ///        {"set": "base",  "type": "fixed"}                                     u = 0 (ENCASTRE)
 ///     ],
-///     "contact"?: reserved ("not supported yet"),
+///     "contact"?: [ rigid indenters in contact with node sets: see solver/contact/contact_spec.hpp ],
 ///     "output"?: {"frames_every_s": dt  |  "frame_every_increments": n   (default: every increment),
 ///                 "history"?: [{"set": "top", "quantities": ["U3", "RF3", ...]}]}
 ///        A frame (.vtu) is written at the chosen interval and always at the end of the step.
@@ -77,6 +78,8 @@
 #include <vector>
 
 #include "mesh/structured_hex.hpp"
+#include "solver/contact/contact_spec.hpp"
+#include "solver/dynamics/steady_state_spec.hpp"
 
 namespace cushion::solver {
 
@@ -158,12 +161,14 @@ struct OutputSpec {
 
 struct StepSpec {
   std::string name;
-  enum class Type { static_, visco } type = Type::static_;
+  enum class Type { static_, visco, steady_state } type = Type::static_;
   bool long_term = false;     ///< static only: long-term (relaxed) response
   double period = 0.0;        ///< time period [s]
   IncrementSpec increment;
   std::vector<BoundarySpec> boundary;
+  std::vector<ContactSpec> contact;  ///< rigid indenters (solver/contact/contact_spec.hpp)
   OutputSpec output;
+  dynamics::SteadyStateSpec steady_state;  ///< type steady_state only (solver/dynamics/steady_state_spec.hpp)
 };
 
 struct SolverSpec {

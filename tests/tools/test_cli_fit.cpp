@@ -122,7 +122,7 @@ TEST_F(CliFit, WritesEveryOutputAndAReadableMaterial) {
   const CommandRun r = run_cushion("fit " + quoted(campaign() / "campaign.json") + " -o " + quoted(out));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("outputs in"), std::string::npos);
-  for (const char* f : {"material.json", "material_paper.json", "material_refit.json", "abaqus_paper.inp",
+  for (const char* f : {"material.json", "abaqus_paper.inp",
                         "abaqus_refit.inp", "report.json", "report.md", "fig8_decomposition.csv", "fig8_decomposition.gp",
                         "fig7_difference_stress.csv", "fig4_dynamic.csv", "table2_protocol.csv"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
@@ -130,6 +130,10 @@ TEST_F(CliFit, WritesEveryOutputAndAReadableMaterial) {
   // The default material is one of the two written, and the solver reads it.
   const auto def = cushion::material::read_material_file(out / "material.json");
   const auto json = nlohmann::json::parse(read(out / "report.json"));
+  // A material file is written unless the reader would reject it (then the report says why).
+  for (const std::string which : {"paper", "refit"})
+    EXPECT_EQ(fs::exists(out / ("material_" + which + ".json")), json["material_problems"][which].get<std::string>().empty())
+        << which;
   const std::string chosen = json["default"]["material"];
   const auto same = cushion::material::read_material_file(out / ("material_" + chosen + ".json"));
   ASSERT_EQ(def.spec.hyperfoam.size(), same.spec.hyperfoam.size());
@@ -137,7 +141,7 @@ TEST_F(CliFit, WritesEveryOutputAndAReadableMaterial) {
   EXPECT_EQ(json["tests"].size(), 2u);
   EXPECT_NE(read(out / "abaqus_refit.inp").find("*HYPERFOAM, N=3, MODULI=LONG TERM"), std::string::npos);
   // A second run may replace an earlier fit output.
-  EXPECT_EQ(run_cushion("fit " + quoted(campaign() / "campaign.json") + " -o " + quoted(out) + " --no-refit").exit_code, 0);
+  EXPECT_EQ(run_cushion("fit " + quoted(campaign() / "campaign.json") + " -o " + quoted(out)).exit_code, 0);
 }
 
 TEST_F(CliFit, MissingOrMisspeltColumnsAndOtherUnits) {

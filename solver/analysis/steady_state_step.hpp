@@ -1,0 +1,37 @@
+#pragma once
+/// The "steady_state" step of a case (keys: solver/dynamics/steady_state_spec.hpp): a frequency
+/// sweep of the model linearised about the committed end state of the previous step (solver/dynamics/
+/// steady_state.hpp for the equations). A linear perturbation: the carried state (u, material state,
+/// time) is left unchanged, so a later step continues from the base state.
+///
+/// Base state: the previous step's committed displacements; the geometric stress is the relaxed
+/// (long-term) stress at that deformation (default, ABAQUS convention) or the stress as left
+/// ("base_stress": "as_left"); the Prony series gives the complex material tangent C*(w) about it.
+/// Excitation: harmonic displacement of one component of a set, the "held" components at zero, all
+/// else free; displacements are absolute (alpha M damps absolute velocities).
+/// Contact: NOT linearised yet. A sweep needs the indenter modelled as prescribed displacements of
+/// the nodes under it (held in the sweep); a case whose base step uses contact is rejected.
+/// Outputs in the run folder: <step>_sweep.csv (one row per frequency, written at the end of the
+/// sweep in one piece) and, if output.vtk, <step>_sweep.pvd + <step>_sweep_NNNN.vtu (time = frequency
+/// [Hz]); one progress line per frequency. Frequencies are solved on up to 2 threads.
+#include "solver/analysis/step.hpp"
+
+namespace cushion::solver {
+
+class SteadyStateStep final : public Step {
+ public:
+  explicit SteadyStateStep(const StepSpec& spec) : spec_(spec) {}
+  const StepSpec& spec() const override { return spec_; }
+  /// Throws InputError for a material without density, a missing/empty set or contact in the base
+  /// step (before anything is written); AnalysisError if the base state cannot be linearised or a
+  /// frequency hits an undamped resonance (no sweep file is then written).
+  void run(AnalysisContext& ctx) override;
+
+ private:
+  const StepSpec& spec_;
+};
+
+/// The Step of a "steady_state" case step (called by make_step).
+std::unique_ptr<Step> make_steady_state_step(const StepSpec& spec);
+
+}  // namespace cushion::solver

@@ -1,0 +1,64 @@
+#pragma once
+/// Contact in the step driver: one ContactContributor per named contact of a case, kept in the
+/// AnalysisContext across steps (its multipliers and stick points carry over). It moves the
+/// indenter, adds the contact term to every increment, runs the Uzawa updates, writes
+/// <out>/contact_<name>.csv (one row per converged increment) and the frame arrays, and logs
+/// when the indenter has no contact or loses it.
+#include <memory>
+#include <vector>
+
+#include "solver/analysis/step.hpp"
+#include "solver/contact/contact_set.hpp"
+#include "solver/contact/contact_spec.hpp"
+#include "solver/output/history_csv.hpp"
+
+namespace cushion::solver {
+
+/// Columns of contact_<name>.csv after "time_s" (forces and area multiplied by force_factor).
+std::vector<std::string> contact_history_columns(const std::string& name);
+
+class ContactContributor final : public ResidualContributor {
+ public:
+  /// Builds the contact set on the node set spec.set (throws InputError naming spec.key for nodes
+  /// off the surface, an open STL ...) and opens the history file in the output folder.
+  ContactContributor(const ContactSpec& spec, AnalysisContext& ctx);
+
+  /// Prepares a step: the motion of `spec` (this step's entry), the DOF numbering, the start time.
+  /// Throws InputError if the indenter starts inside the block at the first step.
+  void begin_step(const ContactSpec& spec, const StepSpec& step, const DofMap& dofs);
+
+  void begin_increment(const IncrementInfo& increment, EquilibriumProblem& problem) override;
+  bool update_after_solve(std::string& failure) override;
+  void commit() override;
+  void revert() override;
+  void add_frame_fields(FrameData& frame) const override;
+  bool needs_unsymmetric_solver() const { return set_.parameters().friction > 0.0; }
+
+  const ContactSet& set() const { return set_; }
+
+ private:
+  Vec3 motion_at(double t_total) const;
+
+  AnalysisContext& ctx_;
+  ContactSet set_;
+  double force_factor_;
+  HistoryWriter history_;
+  // step data
+  ContactSpec step_spec_;
+  const StepSpec* step_ = nullptr;
+  const DofMap* dofs_ = nullptr;
+  double t_start_ = 0.0;
+  Vec3 start_position_ = Vec3::Zero(), committed_position_ = Vec3::Zero();
+  double t_end_ = 0.0;
+  bool checked_start_ = false, had_contact_ = false, contact_in_step_ = false;
+};
+
+/// The contributors of a step's contacts, created on first use and kept in ctx by name, each
+/// prepared for the step (begin_step).
+std::vector<std::shared_ptr<ResidualContributor>> step_contacts(AnalysisContext& ctx, const StepSpec& step,
+                                                                const DofMap& dofs);
+
+/// True if any step of the case uses friction (the tangent is then unsymmetric: LU solver).
+bool case_has_friction(const CaseSpec& spec);
+
+}  // namespace cushion::solver

@@ -1,0 +1,132 @@
+#pragma once
+/// Node-to-rigid-surface contact of a set of foam surface nodes against one moving rigid indenter.
+///
+/// Normal (augmented Lagrangian, Uzawa): per node a the contact force magnitude is
+///   t_N = < lambda_a - eps_a g_a >   [N],  eps_a = penalty [MPa/mm] x A_a (tributary area [mm^2]),
+/// g_a = g(x_a - c(t)) the signed gap [mm], and the force on the node is t_N grad g. This is the
+/// gradient of W = < lambda - eps g >^2 / (2 eps), so the tangent eps grad g grad g^T - t_N H is the
+/// exact derivative (symmetric). After each converged Newton solve augment() sets lambda = t_N
+/// until the largest penetration is within `tolerance` (Uzawa loop around Newton).
+/// Tangential (Coulomb, regularised): each contacting node has a stick point xi in the indenter
+/// frame; trial force f_T = -eps_T P (x - c - xi), P = I - n n^T, n = grad g / |grad g|; if
+/// |f_T| > mu t_N the node slips: f_T = mu t_N f_T / |f_T| and xi follows. The stick points are
+/// the slip history, committed with the step state. Newly touching nodes start stuck at their
+/// current point. The frictional tangent is unsymmetric (use an LU solver when mu > 0).
+/// The active set is the sign of lambda - eps g at the current iterate (semi-smooth Newton): the
+/// residual is continuous and the line search keeps the iteration from cycling; switches per
+/// evaluation are counted (status()).
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mesh/mesh.hpp"
+#include "solver/assembler.hpp"
+#include "solver/contact/rigid_surface.hpp"
+#include "solver/output/frame_data.hpp"
+
+namespace cushion::solver {
+
+/// Contact parameters (defaults: the SIT-BAR case).
+struct ContactParameters {
+  double penalty = 1.0;             ///< normal penalty stiffness per unit area [MPa/mm = N/mm^3]
+  double tangential_penalty = 0.0;  ///< tangential penalty per unit area [MPa/mm]; 0: 0.1 x penalty
+  double friction = 0.0;            ///< Coulomb coefficient mu [-] (0: frictionless)
+  double tolerance = 0.1;           ///< largest penetration accepted after augmentation [mm]
+  int max_augmentations = 10;       ///< Uzawa updates per increment before giving up
+};
+
+/// Node status for output.
+enum class ContactStatus { open = 0, stick = 1, slip = 2 };
+
+/// Sums over the contact set at the last evaluation (indenter frame = reference axes).
+struct ContactTotals {
+  Vec3 force = Vec3::Zero();  ///< total force of the indenter on the foam [N]
+  double normal_force = 0.0;  ///< sum of the normal force magnitudes t_N |grad g| [N]
+  double area = 0.0;          ///< tributary area of the nodes in contact (reference config) [mm^2]
+  double mean_pressure = 0.0; ///< normal_force / area [MPa] (0 without contact)
+  double max_penetration = 0.0;  ///< largest -g over nodes carrying force [mm] (>= 0)
+  double min_gap = 0.0;       ///< smallest g over the set [mm]
+  int active = 0;             ///< nodes carrying normal force
+  int slipping = 0;           ///< of which slipping
+};
+
+/// Outcome of one Uzawa update.
+struct AugmentOutcome {
+  bool converged = true;    ///< penetration within tolerance: no further solve needed
+  bool failed = false;      ///< tolerance not reached within max_augmentations
+  double max_penetration = 0.0;  ///< before the update [mm]
+  std::string message;      ///< why failed (names the contact, the penalty and what to change)
+};
+
+class ContactSet {
+ public:
+  /// `nodes`: 0-based indices of the contact nodes; each must lie on an exterior face of `mesh`
+  /// whose nodes all belong to the set (its tributary area must be > 0),
+  /// otherwise cushion::InputError names the first such node by label. `mesh` must outlive this.
+  ContactSet(std::string name, const mesh::Mesh& mesh, std::vector<int> nodes,
+             std::shared_ptr<const RigidSurface> surface, ContactParameters parameters);
+
+  /// Indenter translation c [mm] for the next evaluations (the end of the current increment).
+  void set_position(const Vec3& c) { position_ = c; }
+  const Vec3& position() const { return position_; }
+
+  /// Adds the contact residual (minus the contact forces) to r_full [N] and, if K, the tangent on
+  /// the free DOFs of `dofs` [N/mm] at full displacements u [mm]; stores the trial state.
+  void evaluate(const Eigen::VectorXd& u, const DofMap& dofs, Eigen::VectorXd& r_full, SparseMatrix* K);
+
+  /// Checks the state of the last evaluation (a converged Newton solve): if the largest
+  /// penetration exceeds the tolerance, lambda = t_N (another solve needed). Counts the updates
+  /// of this increment; fails after max_augmentations.
+  AugmentOutcome augment();
+  /// Resets the augmentation count (start of an increment attempt).
+  void begin_attempt() { augmentations_ = 0; }
+  int augmentations() const { return augmentations_; }
+
+  /// Accept the trial state (multipliers, stick points) of the last evaluation, or drop it.
+  void commit();
+  void revert();
+
+  /// Totals of the last evaluation (or of the committed state after commit()).
+  ContactTotals totals() const;
+  /// Largest penetration of the set at u [mm] (0 if none), and the node label where it occurs.
+  std::pair<double, int> penetration_at(const Eigen::VectorXd& u) const;
+
+  /// Per-node arrays of the last evaluation for a frame (size = mesh nodes; nodes not in the set:
+  /// pressure 0, gap NaN, status -1): "<name>_pressure_kPa", "<name>_gap_mm", "<name>_status"
+  /// (0 open, 1 stick, 2 slip), "<name>_force_N" (vector, force on the foam).
+  void add_frame_fields(FrameData& frame) const;
+
+  const std::string& name() const { return name_; }
+  const std::vector<int>& nodes() const { return nodes_; }
+  const std::vector<double>& areas() const { return area_; }  ///< tributary areas [mm^2]
+  const RigidSurface& surface() const { return *surface_; }
+  const ContactParameters& parameters() const { return p_; }
+  /// Active-set changes between the last two evaluations (for the log).
+  int last_switches() const { return switches_; }
+
+ private:
+  std::string name_;
+  const mesh::Mesh& mesh_;
+  std::vector<int> nodes_;
+  std::shared_ptr<const RigidSurface> surface_;
+  ContactParameters p_;
+  Vec3 position_ = Vec3::Zero();
+  std::vector<double> area_;
+  // committed and trial per-node state
+  std::vector<double> lambda_, lambda_trial_;
+  std::vector<Vec3> xi_, xi_trial_;        ///< stick points in the indenter frame [mm]
+  std::vector<char> touching_, touching_trial_;
+  // last evaluation (output)
+  std::vector<double> gap_, t_N_, grad_norm_;
+  std::vector<Vec3> force_;
+  std::vector<ContactStatus> status_;
+  int augmentations_ = 0;
+  int switches_ = 0;
+};
+
+/// Tributary areas [mm^2] of the given nodes: each exterior face whose nodes all belong to the set
+/// (mesh::surface_from_node_set) gives an equal share of its reference area to each of its nodes
+/// (the consistent nodal load of a uniform pressure on parallelograms and linear triangles).
+std::vector<double> tributary_areas(const mesh::Mesh& mesh, const std::vector<int>& nodes);
+
+}  // namespace cushion::solver

@@ -1,0 +1,122 @@
+#include "solver/dynamics/steady_state.hpp"
+
+#include <stdexcept>
+
+namespace cushion::solver::dynamics {
+namespace {
+
+using cplx = std::complex<double>;
+
+/// A square n x n copy of A (top-left block), zero elsewhere.
+SparseMatrix embedded(const SparseMatrix& A, std::size_t n) {
+  SparseMatrix B = A;
+  B.conservativeResize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+  B.makeCompressed();
+  return B;
+}
+
+/// Rows `dofs` of the n x n identity.
+SparseMatrix selection(const std::vector<int>& dofs, std::size_t n) {
+  SparseMatrix P(static_cast<Eigen::Index>(dofs.size()), static_cast<Eigen::Index>(n));
+  std::vector<Eigen::Triplet<double>> t;
+  for (std::size_t i = 0; i < dofs.size(); ++i) t.emplace_back(static_cast<int>(i), dofs[i], 1.0);
+  P.setFromTriplets(t.begin(), t.end());
+  return P;
+}
+
+}  // namespace
+
+SteadyStateSolver::SteadyStateSolver(HarmonicModel model, Damping damping, Excitation excitation,
+                                     std::vector<DofGroup> groups)
+    : model_(std::move(model)), damping_(damping), groups_(std::move(groups)) {
+  if (!model_.system) throw std::invalid_argument("steady-state: no linearised system");
+  const auto missing = model_.system->sections_without_density();
+  if (!missing.empty())
+    throw std::invalid_argument("steady-state: section \"" + missing.front() +
+                                "\" has no mass density (give density_kg_m3 in its material file)");
+  if (damping_.alpha < 0.0 || damping_.beta < 0.0 || damping_.structural < 0.0)
+    throw std::invalid_argument("steady-state: damping coefficients must be >= 0");
+  if (excitation.driven.empty()) throw std::invalid_argument("steady-state: no driven DOF");
+  n_ = model_.system->num_dofs() + static_cast<std::size_t>(model_.extra_dofs);
+  std::vector<int> role(n_, 0);  // 0 free, 1 driven, 2 held
+  auto mark = [&](const std::vector<int>& dofs, int r) {
+    for (int d : dofs) {
+      if (d < 0 || d >= static_cast<int>(n_)) throw std::invalid_argument("steady-state: DOF out of range");
+      if (role[d] != 0 && role[d] != r) throw std::invalid_argument("steady-state: a DOF is both driven and held");
+      role[d] = r;
+    }
+  };
+  mark(excitation.driven, 1);
+  mark(excitation.held, 2);
+  for (std::size_t d = 0; d < n_; ++d) (role[d] == 0 ? free_ : constrained_).push_back(static_cast<int>(d));
+  unit_c_.setZero(static_cast<Eigen::Index>(constrained_.size()));
+  for (std::size_t k = 0; k < constrained_.size(); ++k)
+    if (role[constrained_[k]] == 1) unit_c_(static_cast<Eigen::Index>(k)) = 1.0;
+  for (const auto& g : groups_)
+    for (int d : g.dofs)
+      if (d < 0 || d >= static_cast<int>(n_)) throw std::invalid_argument("steady-state: group " + g.name + " DOF out of range");
+
+  K0_ = embedded(model_.system->long_term_stiffness(), n_);
+  M_ = embedded(model_.system->mass(), n_);
+  if (!model_.lumped_mass.empty()) {
+    SparseMatrix L(static_cast<Eigen::Index>(n_), static_cast<Eigen::Index>(n_));
+    std::vector<Eigen::Triplet<double>> t;
+    for (const auto& [d, m] : model_.lumped_mass) {
+      if (d < 0 || d >= static_cast<int>(n_) || m < 0.0) throw std::invalid_argument("steady-state: bad lumped mass");
+      t.emplace_back(d, d, m);
+    }
+    L.setFromTriplets(t.begin(), t.end());
+    M_ = SparseMatrix(M_ + L);
+  }
+  Kx_ = model_.extra_stiffness.size() == 0 ? SparseMatrix(static_cast<Eigen::Index>(n_), static_cast<Eigen::Index>(n_))
+                                           : model_.extra_stiffness;
+  if (Kx_.rows() != static_cast<Eigen::Index>(n_) || Kx_.cols() != static_cast<Eigen::Index>(n_))
+    throw std::invalid_argument("steady-state: extra stiffness must be n x n");
+  Pf_ = selection(free_, n_);
+  Pc_ = selection(constrained_, n_);
+}
+
+ComplexMatrix SteadyStateSolver::dynamic_matrix(double omega) const {
+  const SparseMatrix re = Kx_ - omega * omega * M_;
+  const SparseMatrix im = damping_.structural * K0_ + omega * (damping_.alpha * M_ + damping_.beta * K0_);
+  ComplexMatrix Ks = model_.system->stiffness(omega);
+  Ks.conservativeResize(static_cast<Eigen::Index>(n_), static_cast<Eigen::Index>(n_));
+  ComplexMatrix D = Ks + re.cast<cplx>() + cplx(0.0, 1.0) * im.cast<cplx>();
+  D.makeCompressed();
+  return D;
+}
+
+FrequencyResponse SteadyStateSolver::solve(double frequency, cplx amplitude) {
+  if (!(frequency > 0.0)) throw std::invalid_argument("steady-state: frequencies must be > 0 Hz");
+  const double omega = 2.0 * M_PI * frequency;
+  const ComplexMatrix D = dynamic_matrix(omega);
+  const ComplexMatrix Pf = Pf_.cast<cplx>(), Pc = Pc_.cast<cplx>();
+  ComplexMatrix Dff = Pf * D * ComplexMatrix(Pf.transpose());
+  Dff.makeCompressed();
+  const ComplexMatrix Dfc = Pf * D * ComplexMatrix(Pc.transpose());
+  const Eigen::VectorXcd uc = amplitude * unit_c_;
+  lu_.factorize(Dff);
+  const Eigen::VectorXcd uf = lu_.solve(-(Dfc * uc));
+
+  FrequencyResponse r;
+  r.frequency = frequency;
+  r.amplitude = amplitude;
+  r.u.setZero(static_cast<Eigen::Index>(n_));
+  for (std::size_t k = 0; k < free_.size(); ++k) r.u(free_[k]) = uf(static_cast<Eigen::Index>(k));
+  for (std::size_t k = 0; k < constrained_.size(); ++k) r.u(constrained_[k]) = uc(static_cast<Eigen::Index>(k));
+  const Eigen::VectorXcd f = D * r.u;  // residual: zero at free DOFs, reactions at constrained ones
+  std::vector<bool> is_constrained(n_, false);
+  for (int d : constrained_) is_constrained[d] = true;
+  for (const auto& g : groups_) {
+    cplx R = 0.0, U = 0.0;
+    for (int d : g.dofs) {
+      if (is_constrained[d]) R += f(d);
+      U += r.u(d);
+    }
+    r.reaction.push_back(R);
+    r.displacement.push_back(g.dofs.empty() ? cplx(0.0) : U / static_cast<double>(g.dofs.size()));
+  }
+  return r;
+}
+
+}  // namespace cushion::solver::dynamics

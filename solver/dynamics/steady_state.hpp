@@ -1,0 +1,92 @@
+#pragma once
+/// Direct steady-state dynamics (physics.md 4): harmonic response u(t) = Re(u^ e^{+i w t}) of the
+/// linearised model about its base state, with prescribed harmonic displacements at some DOFs.
+///
+///   D(w) = K*(w) + K_x + i s K_R(0) + i w (alpha M + beta K_R(0)) - w^2 M,
+///   D_ff u^_f = -D_fc u^_c,   reactions R^_c = D_cf u^_f + D_cc u^_c   [N]
+/// K*(w): complex material + geometric stiffness (LinearisedSystem); K_x: extra real stiffness (the
+/// linearised contact), not Rayleigh damped; K_R(0): the real long-term base-state tangent (the
+/// stiffness-proportional Rayleigh and structural terms use it [A]); M: consistent mass plus lumped
+/// masses. All DOFs are ABSOLUTE displacements, so the mass-proportional term alpha M acts on absolute
+/// velocities as in ABAQUS: the rigid motion of a shaken base is damped too (a force alpha m w U on a
+/// body moving rigidly with amplitude U). Reactions include the inertia and damping of the mass
+/// carried by the constrained DOFs themselves (consistent-mass share of the supported nodes).
+/// One complex UMFPACK factorisation per frequency; the symbolic analysis is reused (same pattern).
+#include <complex>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "solver/dynamics/linearised_system.hpp"
+#include "solver/linear_solver.hpp"
+
+namespace cushion::solver::dynamics {
+
+/// Step-level damping (ABAQUS *GLOBAL DAMPING / Rayleigh): C = alpha M + beta K_R(0), plus i s K_R(0).
+struct Damping {
+  double alpha = 0.0;       ///< mass-proportional [1/s] (paper: 180)
+  double beta = 0.0;        ///< stiffness-proportional [s] (paper: 1e-4)
+  double structural = 0.0;  ///< structural (hysteretic) loss factor s [-]
+};
+
+/// The model: the linearised solid on its 3 x nodes DOFs plus `extra_dofs` appended DOFs (e.g. the
+/// vertical DOF of a rigid indenter, index 3 nodes + k), coupled by `extra_stiffness`.
+struct HarmonicModel {
+  const LinearisedSystem* system = nullptr;          ///< not owned, must outlive the solver
+  int extra_dofs = 0;                                 ///< appended DOFs
+  SparseMatrix extra_stiffness;                       ///< n x n [N/mm] (n = 3 nodes + extra), or empty
+  std::vector<std::pair<int, double>> lumped_mass;    ///< (DOF, mass [t]) added to M
+};
+
+/// Prescribed DOFs: `driven` move with the excitation amplitude, `held` stay at zero; the rest are free.
+struct Excitation {
+  std::vector<int> driven;
+  std::vector<int> held;
+};
+
+/// A named group of DOFs whose summed reaction and mean displacement are reported.
+struct DofGroup {
+  std::string name;
+  std::vector<int> dofs;
+};
+
+/// Response at one frequency.
+struct FrequencyResponse {
+  double frequency = 0.0;                          ///< [Hz]
+  std::complex<double> amplitude;                  ///< driven displacement u^_d [mm]
+  Eigen::VectorXcd u;                              ///< all DOFs [mm]
+  std::vector<std::complex<double>> reaction;      ///< per group: sum of reactions at its constrained DOFs [N]
+  std::vector<std::complex<double>> displacement;  ///< per group: mean displacement [mm]
+};
+
+/// Frequency-by-frequency solver (one factorisation per frequency, analysis reused).
+class SteadyStateSolver {
+ public:
+  /// Throws std::invalid_argument on DOFs out of range, driven and held overlapping, no driven DOF,
+  /// negative damping, or a missing mass (a section without density, message naming it).
+  SteadyStateSolver(HarmonicModel model, Damping damping, Excitation excitation, std::vector<DofGroup> groups);
+
+  /// Solves at `frequency` [Hz] (> 0, else std::invalid_argument) for a driven amplitude [mm].
+  /// Throws SingularMatrixError at an undamped resonance.
+  FrequencyResponse solve(double frequency, std::complex<double> amplitude);
+
+  /// D(w) on all DOFs [N/mm] (for checks).
+  ComplexMatrix dynamic_matrix(double omega) const;
+  std::size_t num_dofs() const { return n_; }
+  std::size_t num_free() const { return free_.size(); }
+  int analyses() const { return lu_.analyses(); }
+  const std::vector<DofGroup>& groups() const { return groups_; }
+
+ private:
+  HarmonicModel model_;
+  Damping damping_;
+  std::vector<DofGroup> groups_;
+  std::size_t n_ = 0;
+  std::vector<int> free_, constrained_;
+  Eigen::VectorXcd unit_c_;  ///< constrained amplitudes per unit driven amplitude (1 driven, 0 held)
+  SparseMatrix K0_, M_, Kx_;  ///< n x n
+  SparseMatrix Pf_, Pc_;      ///< selection matrices (rows: free / constrained DOFs)
+  ComplexLuSolver lu_;
+};
+
+}  // namespace cushion::solver::dynamics

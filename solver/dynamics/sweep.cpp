@@ -1,0 +1,94 @@
+#include "solver/dynamics/sweep.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <stdexcept>
+
+#include "material/input_error.hpp"
+
+namespace cushion::solver::dynamics {
+namespace {
+
+double phase_deg(std::complex<double> z) { return std::arg(z) * 180.0 / M_PI; }
+
+}  // namespace
+
+AccelerationReading acceleration_reading_from_string(const std::string& name, const std::string& where) {
+  if (name == "peak") return AccelerationReading::peak;
+  if (name == "peak_to_peak") return AccelerationReading::peak_to_peak;
+  throw InputError(where + ": acceleration reading must be \"peak\" or \"peak_to_peak\", not \"" + name + "\"");
+}
+
+double displacement_amplitude(double acceleration, AccelerationReading reading, double frequency) {
+  if (!(frequency > 0.0)) throw std::invalid_argument("displacement_amplitude: frequency must be > 0 Hz");
+  const double a_peak = reading == AccelerationReading::peak ? acceleration : 0.5 * acceleration;
+  const double w = 2.0 * M_PI * frequency;
+  return a_peak / (w * w);
+}
+
+SweepRow make_row(const FrequencyResponse& r, Measure measure, const NominalGeometry& geometry) {
+  if (r.reaction.size() < 2) throw std::invalid_argument("make_row: the response needs the groups {indenter, base}");
+  SweepRow row;
+  row.frequency = r.frequency;
+  row.amplitude = r.amplitude;
+  row.indenter_force = r.reaction[0];
+  row.base_force = r.reaction[1];
+  row.indenter_motion = r.displacement[0];
+  switch (measure) {
+    case Measure::indenter_held: row.stiffness = -row.indenter_force / r.amplitude; break;
+    case Measure::indenter_driven: row.stiffness = row.indenter_force / r.amplitude; break;
+    case Measure::indenter_free: row.stiffness = row.base_force / r.amplitude; break;
+  }
+  row.modulus = geometry.area > 0.0 ? row.stiffness * geometry.thickness / geometry.area : 0.0;
+  return row;
+}
+
+void write_sweep_csv(const std::filesystem::path& file, const std::vector<SweepRow>& rows,
+                     const std::vector<std::string>& comment) {
+  // Written to <file>.tmp, then renamed: the sweep file is complete or absent, never half-written.
+  const std::filesystem::path tmp = file.string() + ".tmp";
+  std::ofstream out(tmp);
+  if (!out) throw std::runtime_error(file.string() + ": cannot open the sweep file for writing");
+  for (const auto& c : comment) out << "# " << c << "\n";
+  out << "frequency_Hz,U_real_mm,U_imag_mm,"
+         "indenter_RF_real_N,indenter_RF_imag_N,indenter_RF_amplitude_N,indenter_RF_phase_deg,"
+         "base_RF_real_N,base_RF_imag_N,base_RF_amplitude_N,base_RF_phase_deg,"
+         "indenter_U_amplitude_mm,indenter_U_phase_deg,transmissibility,"
+         "stiffness_real_N_per_mm,stiffness_imag_N_per_mm,dynamic_stiffness_N_per_mm,"
+         "dynamic_modulus_kPa,storage_modulus_kPa,loss_modulus_kPa,phase_deg\n";
+  out.precision(10);
+  for (const auto& r : rows) {
+    const auto T = r.indenter_motion / r.amplitude;
+    out << r.frequency << ',' << r.amplitude.real() << ',' << r.amplitude.imag() << ',' << r.indenter_force.real()
+        << ',' << r.indenter_force.imag() << ',' << std::abs(r.indenter_force) << ',' << phase_deg(r.indenter_force)
+        << ',' << r.base_force.real() << ',' << r.base_force.imag() << ',' << std::abs(r.base_force) << ','
+        << phase_deg(r.base_force) << ',' << std::abs(r.indenter_motion) << ',' << phase_deg(r.indenter_motion) << ','
+        << std::abs(T) << ',' << r.stiffness.real() << ',' << r.stiffness.imag() << ',' << std::abs(r.stiffness)
+        << ',' << 1e3 * std::abs(r.modulus) << ',' << 1e3 * r.modulus.real() << ',' << 1e3 * r.modulus.imag() << ','
+        << phase_deg(r.stiffness) << '\n';
+  }
+  out.close();
+  if (!out) throw std::runtime_error(file.string() + ": write failed");
+  std::filesystem::rename(tmp, file);
+}
+
+void write_frequency_frame(ResultSeries& series, const mesh::Mesh& mesh, const FrequencyResponse& r) {
+  const std::size_t n = mesh.num_nodes();
+  FrameData frame;
+  frame.time = r.frequency;
+  frame.displacement.resize(n);
+  NamedField re{"U_real_mm", 3, {}}, im{"U_imag_mm", 3, {}}, amp{"U_amplitude_mm", 3, {}}, ph{"U_phase_deg", 3, {}};
+  for (std::size_t a = 0; a < n; ++a)
+    for (int c = 0; c < 3; ++c) {
+      const std::complex<double> z = r.u(static_cast<Eigen::Index>(3 * a + c));
+      frame.displacement[a](c) = z.real();
+      re.values.push_back(z.real());
+      im.values.push_back(z.imag());
+      amp.values.push_back(std::abs(z));
+      ph.values.push_back(phase_deg(z));
+    }
+  frame.point_fields = {re, im, amp, ph};
+  series.write_frame(mesh, frame);
+}
+
+}  // namespace cushion::solver::dynamics

@@ -1,0 +1,96 @@
+// `cushion compare` / `cushion diagnose` as a user runs them on cases/hidden_effects: outputs written, the
+// run history grows by one run per compare, and bad input gives a clear message (exit 2) or a warning
+// while the rest of the analysis is still reported.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CommandRun {
+  int exit_code = -1;
+  std::string output;
+};
+
+std::string quoted(const fs::path& p) { return "\"" + p.string() + "\""; }
+
+CommandRun run_cushion(const std::string& arguments) {
+  const std::string command = quoted(CUSHION_BINARY) + " " + arguments + " 2>&1";
+  CommandRun run;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return run;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe)) run.output += buffer;
+  const int status = pclose(pipe);
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+fs::path hidden() { return fs::path(CUSHION_SOURCE_DIR) / "cases" / "hidden_effects"; }
+fs::path scratch() { return fs::temp_directory_path() / "cushion_test_cli_compare"; }
+
+std::size_t count_lines(const fs::path& p) {
+  std::ifstream in(p);
+  std::size_t n = 0;
+  for (std::string l; std::getline(in, l);) n += !l.empty();
+  return n;
+}
+
+}  // namespace
+
+TEST(CliCompare, WritesReportAndAppendsHistory) {
+  fs::remove_all(scratch());
+  const std::string args = quoted(hidden() / "base_material.json") + " " +
+                           quoted(hidden() / "campaign_friction" / "campaign.json") + " -o " + quoted(scratch() / "c1") +
+                           " --history " + quoted(scratch() / "history");
+  const CommandRun a = run_cushion("compare " + args + " --label baseline");
+  ASSERT_EQ(a.exit_code, 0) << a.output;
+  EXPECT_NE(a.output.find("some tests fail beyond noise"), std::string::npos) << a.output;
+  std::ifstream in(scratch() / "c1" / "report.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["tests"].size(), 5u);
+  EXPECT_TRUE(fs::exists(scratch() / "c1" / "compare_qs_30.gp"));
+  EXPECT_TRUE(fs::exists(scratch() / "c1" / "compare_dyn_40.csv"));
+  const CommandRun b = run_cushion("compare " + quoted(hidden() / "truth_material_friction.json") + " " +
+                                   quoted(hidden() / "campaign_friction" / "campaign.json") + " -o " +
+                                   quoted(scratch() / "c2") + " --history " + quoted(scratch() / "history") +
+                                   " --label with_friction");
+  ASSERT_EQ(b.exit_code, 0) << b.output;
+  EXPECT_NE(b.output.find("every test is at the noise level"), std::string::npos) << b.output;
+  EXPECT_EQ(count_lines(scratch() / "history" / "history.csv"), 1u + 2u * 5u);  // header + 2 runs x 5 tests
+  EXPECT_TRUE(fs::exists(scratch() / "history" / "history_plot.gp"));
+}
+
+TEST(CliCompare, BadMaterialIsAnInputError) {
+  const fs::path dir = scratch() / "bad";
+  fs::create_directories(dir);
+  std::ofstream(dir / "m.json") << R"({"hyperfoam": {"terms": [{"mu_kPa": 1, "alpha": 0, "nu": 0}]}})";
+  const CommandRun r = run_cushion("compare " + quoted(dir / "m.json") + " " +
+                                   quoted(hidden() / "campaign_control" / "campaign.json") + " -o " + quoted(dir / "out"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("alpha"), std::string::npos) << r.output;
+}
+
+// One test only: diagnose still runs and says what cannot be told apart.
+TEST(CliDiagnose, SingleTestCampaignWarnsAndStillReports) {
+  const fs::path dir = scratch() / "single";
+  fs::create_directories(dir);
+  fs::copy_file(hidden() / "campaign_friction" / "qs_120.csv", dir / "qs_120.csv", fs::copy_options::overwrite_existing);
+  std::ofstream(dir / "campaign.json")
+      << R"({"specimen": {"length_mm": 80, "width_mm": 80, "thickness_mm": 80, "density_kg_m3": 65},
+            "tests": [{"kind": "quasi_static", "file": "qs_120.csv", "rate_mm_min": 120}]})";
+  const CommandRun r = run_cushion("diagnose " + quoted(hidden() / "base_material.json") + " " +
+                                   quoted(dir / "campaign.json") + " -o " + quoted(dir / "out") +
+                                   " --candidates friction,stiffness_damping");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("cannot be told"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(dir / "out" / "diagnosis.md"));
+  EXPECT_TRUE(fs::exists(dir / "out" / "report.json"));
+}

@@ -1,0 +1,72 @@
+// `cushion compare MATERIAL.json CAMPAIGN.json -o DIR [--label NAME] [--history DIR]`: model vs every test
+// of a campaign with error figures per test and region next to the measurement noise, plots, report.json,
+// and optionally a history of runs (error per test across model versions).
+#include <filesystem>
+#include <iostream>
+
+#include "material/calibration/campaign.hpp"
+#include "material/calibration/compare.hpp"
+#include "material/calibration/compare_output.hpp"
+#include "material/calibration/plot.hpp"
+#include "material/calibration/run_history.hpp"
+#include "material/io/material_file.hpp"
+#include "tools/command.hpp"
+
+namespace {
+
+struct CompareCli {
+  std::string material, campaign, out, label, history;
+  int cycles = 5, steps = 40;
+};
+
+std::string gnuplot_path() {
+#ifdef CUSHION_GNUPLOT
+  return cushion::calibration::find_gnuplot(CUSHION_GNUPLOT);
+#else
+  return cushion::calibration::find_gnuplot();
+#endif
+}
+
+const cushion::tools::Registrar reg{"compare", [](CLI::App& app) {
+  auto opt = std::make_shared<CompareCli>();
+  CLI::App* sub = app.add_subcommand("compare", "Compare a material with every test of a campaign (error per test and "
+                                                "region vs measurement noise, plots, report.json)");
+  sub->add_option("material", opt->material, "material file (JSON)")->required();
+  sub->add_option("campaign", opt->campaign, "campaign manifest (JSON)")->required();
+  sub->add_option("-o,--output", opt->out, "output folder (report.json, summary.md, compare_<test>.png/.csv/.gp)")
+      ->required();
+  sub->add_option("--label", opt->label, "model version name for the report and the history (default: material name)");
+  sub->add_option("--history", opt->history, "folder of the run history (history.csv and history_plot.png), appended");
+  sub->add_option("--dynamic-cycles", opt->cycles, "model: cycles per frequency (default 5; last 2 measured)")
+      ->check(CLI::Range(3, 100));
+  sub->add_option("--steps-per-cycle", opt->steps, "model: time steps per cycle (default 40)")->check(CLI::Range(16, 1000));
+  sub->callback([opt] {
+    using namespace cushion::calibration;
+    const auto def = cushion::material::read_material_file(opt->material);
+    const Campaign campaign = read_campaign(opt->campaign);
+    CompareOptions o;
+    o.dynamic_cycles = opt->cycles;
+    o.dynamic_steps_per_cycle = opt->steps;
+    CompareResult r = compare_campaign(*def.model, campaign, o);
+    for (const auto& w : specimen_warnings(def.spec.density, campaign)) r.warnings.insert(r.warnings.begin(), w);
+    const std::string label = opt->label.empty() ? def.spec.name : opt->label;
+    const std::string gnuplot = gnuplot_path();
+    const auto drawn = write_compare_outputs(r, label, opt->out, gnuplot);
+    std::cout << "cushion compare: " << label << " vs " << campaign.manifest.string() << " (" << r.tests.size()
+              << " tests, " << r.seconds << " s)\n\n"
+              << compare_table(r) << "\n";
+    for (const auto& w : r.warnings) std::cout << "warning: " << w << "\n";
+    std::cout << (r.at_noise_level(o.noise_level_ratio) ? "every test is at the noise level (error <= "
+                                                        : "some tests fail beyond noise (error > ")
+              << o.noise_level_ratio << " x noise)\n";
+    std::cout << "written: " << (std::filesystem::path(opt->out) / "report.json").string() << ", " << drawn.size()
+              << " plots" << (gnuplot.empty() ? " (gnuplot not found: .gp scripts only)" : "") << "\n";
+    if (!opt->history.empty()) {
+      const int run = append_history(opt->history, label, r, gnuplot);
+      std::cout << "history: run " << run << " appended to " << (std::filesystem::path(opt->history) / "history.csv").string()
+                << "\n";
+    }
+  });
+}};
+
+}  // namespace

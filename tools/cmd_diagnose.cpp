@@ -1,0 +1,56 @@
+// `cushion diagnose MATERIAL.json CAMPAIGN.json -o DIR`: which effect of the catalogue is missing from a
+// calibrated material (ranked candidates, evidence, material-file fragment), material/calibration/diagnose.hpp.
+#include <filesystem>
+#include <iostream>
+
+#include "material/calibration/campaign.hpp"
+#include "material/calibration/compare.hpp"
+#include "material/calibration/diagnose.hpp"
+#include "material/calibration/diagnose_output.hpp"
+#include "material/calibration/plot.hpp"
+#include "material/input_error.hpp"
+#include "material/io/material_file.hpp"
+#include "tools/command.hpp"
+
+namespace {
+
+struct DiagnoseCli {
+  std::string material, campaign, out;
+  std::vector<std::string> candidates;
+  int threads = 2;
+};
+
+std::string gnuplot_path() {
+#ifdef CUSHION_GNUPLOT
+  return cushion::calibration::find_gnuplot(CUSHION_GNUPLOT);
+#else
+  return cushion::calibration::find_gnuplot();
+#endif
+}
+
+const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
+  auto opt = std::make_shared<DiagnoseCli>();
+  CLI::App* sub = app.add_subcommand(
+      "diagnose", "Name the physical effect missing from a calibrated material: refit each catalogue effect, rank by BIC");
+  sub->add_option("material", opt->material, "calibrated baseline material file (JSON)")->required();
+  sub->add_option("campaign", opt->campaign, "campaign manifest (JSON)")->required();
+  sub->add_option("-o,--output", opt->out, "output folder (diagnosis.md, report.json, fragment.json, plots)")->required();
+  sub->add_option("--candidates", opt->candidates, "only these effect kinds (default: the whole catalogue)")->delimiter(',');
+  sub->add_option("--threads", opt->threads, "candidates fitted in parallel (default 2)")->check(CLI::Range(1, 2));
+  sub->callback([opt] {
+    using namespace cushion::calibration;
+    const auto def = cushion::material::read_material_file(opt->material);
+    const Campaign campaign = read_campaign(opt->campaign);
+    DiagnoseOptions o;
+    o.threads = opt->threads;
+    o.candidates = opt->candidates;
+    for (const auto& k : o.candidates)
+      if (!cushion::material::find_effect(k)) throw cushion::InputError("--candidates: unknown effect kind '" + k + "'");
+    Diagnosis d = diagnose(def.spec, campaign, o, std::cout);
+    for (const auto& w : specimen_warnings(def.spec.density, campaign)) d.warnings.insert(d.warnings.begin(), w);
+    write_diagnosis_outputs(d, opt->out, gnuplot_path());
+    std::cout << "\n" << diagnosis_markdown(d) << "\ndiagnose: " << d.seconds << " s; written to " << opt->out << "\n";
+  });
+}};
+
+}  // namespace
