@@ -50,8 +50,8 @@ const cushion::tools::Registrar reg{"fit", [](CLI::App& app) {
                   "relative Prony moduli of the paper's material: 'tangent' (a_i = E_i/K_v) or 'paper' (g_i = E_i/E_0)")
       ->check(CLI::IsMember({"paper", "tangent"}));
   sub->add_option("--refit-on", opt->refit_on,
-                  "quasi-static tests of the refit: 'calibration' (the issue's method) or 'all' (several rates "
-                  "separate the long-term curve from the slow Prony terms)")
+                  "quasi-static tests of the refit: 'calibration' (every test marked calibration; several rates "
+                  "separate the long-term curve from the slow Prony terms) or 'all' (also the validation ones)")
       ->check(CLI::IsMember({"calibration", "all"}));
   sub->add_option("--dynamic-cycles", opt->cycles, "dynamic test: cycles run per frequency (paper: 20)")->check(CLI::PositiveNumber);
   sub->add_option("--fit-cycles", opt->fit_cycles, "dynamic test: last cycles measured per frequency (10)")->check(CLI::PositiveNumber);

@@ -41,6 +41,31 @@ else
   plots="(none: gnuplot not installed; install gnuplot-nox)"
 fi
 
-echo "demo: outputs in $out/"
+echo "demo: material-point outputs in $out/"
 echo "  tables: $out/cube.csv $out/sine_1Hz.csv"
 echo "  plots:  $plots"
+
+# 3. Calibration: the paper's method plus the consistency refit on the shipped SYNTHETIC campaign.
+echo; echo "== cushion fit: shipped synthetic campaign -> material =="
+"$cushion" fit cases/campaign_synthetic/campaign/campaign.json -o results/fit
+
+# 4. The FE cube test with the paper's foam (hyperfoam + Table 3 Prony), frames for ParaView.
+echo; echo "== cushion run: the paper's 80 mm cube (load, hold, unload) =="
+"$cushion" run cases/cube_compression/case.json -o results/cube --quiet
+
+# 5. Compare, diagnose, extend on a campaign with a hidden effect (cases/hidden_effects/README.md).
+echo; echo "== compare -> diagnose -> add the effect -> compare again =="
+campaign=cases/hidden_effects/campaign_friction/campaign.json
+rm -rf results/loop
+"$cushion" compare cases/hidden_effects/base_material.json "$campaign" -o results/loop/compare_baseline \
+  --label baseline --history results/loop/history
+"$cushion" diagnose cases/hidden_effects/base_material.json "$campaign" -o results/loop/diagnose
+"$cushion" compare results/loop/diagnose/material_extended.json "$campaign" -o results/loop/compare_extended \
+  --label extended --history results/loop/history
+
+echo
+echo "demo: all outputs in results/"
+echo "  results/point/             material-point tables and plots"
+echo "  results/fit/               fitted material (material.json), ABAQUS cards, report.md, plots"
+echo "  results/cube/results.pvd   open in ParaView (File > Open, Apply, Warp By Vector)"
+echo "  results/loop/              compare (baseline), diagnosis.md, compare (extended), history/history_plot.png"

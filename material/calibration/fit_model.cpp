@@ -212,7 +212,9 @@ ContactSamples contact_samples(const QuasiStaticTest& test, const Segments& segm
     c.strain.push_back(0.0);
     c.stress.push_back(std::nan(""));
   }
-  for (std::size_t i = segments.load_begin; i <= segments.unload_end; ++i) {
+  // A truncated unloading ends at its first ~zero-force sample: the platen may have left the foam there.
+  const std::size_t last = segments.unload_end + 1 < rec.time.size() ? segments.unload_end - 1 : segments.unload_end;
+  for (std::size_t i = segments.load_begin; i <= last; ++i) {
     c.time.push_back(rec.time[i] - t0);
     c.strain.push_back(rec.strain[i]);
     c.stress.push_back(rec.stress[i]);

@@ -77,8 +77,9 @@ DynamicPath dynamic_path(double preload, const std::vector<double>& frequency, c
 std::vector<double> strain_amplitudes(const DynamicTest& test, double thickness);
 
 /// The in-contact part of a quasi-static record as a path from the start of loading: samples
-/// [load_begin, unload_end] (after a lift-off the platen no longer sets the strain), times from the start of
-/// loading, preceded by a relaxed zero-strain sample if the record starts compressed.
+/// [load_begin, unload_end], without unload_end when the unloading was truncated at a ~zero force there
+/// (after a lift-off the platen no longer sets the strain), times from the start of loading, preceded by a
+/// relaxed zero-strain sample if the record starts compressed.
 struct ContactSamples {
   std::vector<double> time;    ///< [s] from the start of loading
   std::vector<double> strain;  ///< nominal compression [-]

@@ -126,8 +126,11 @@ std::vector<PlotFiles> write_fit_outputs(const FitResult& R, const Campaign& cam
   fs::create_directories(tmp);
   try {
     const double density = campaign.specimen.density;
+    std::string calibration_tests;
+    for (const QuasiStaticTest* t : campaign.quasi_static_calibration_tests()) calibration_tests += t->name + ", ";
+    if (calibration_tests.empty()) calibration_tests = R.quasi_static_name + ", ";
     const std::string provenance = "cushion fit of " + campaign.manifest.filename().string() + " (calibration tests " +
-                                   R.quasi_static_name + ", " + R.dynamic_name + ")";
+                                   calibration_tests + R.dynamic_name + ")";
     const ViscoHyperfoam& refit_material = R.refit ? R.refit->material : R.paper_material;
     if (R.paper_problem.empty())
       material::write_material_file(

@@ -217,29 +217,40 @@ HereditaryFit fit_hereditary(const StressStrainRecord& r, const Segments& s, con
     starts.push_back(b);
   }
 
-  HereditaryFit best;
-  double best_cost = std::numeric_limits<double>::infinity();
+  // Stage 1 for every start: variable projection over the decay rates only (bounded).
+  struct Projected {
+    std::vector<cplx> betas;
+    double cost;
+  };
+  std::vector<Projected> projected;
   for (const auto& betas : starts) {
-    // Stage 1: variable projection over the decay rates only (bounded).
     std::vector<double> b(2 * M);
     for (int i = 0; i < M; ++i) {
       b[2 * i] = std::clamp(betas[i].real(), 0.0, beta_max);
       b[2 * i + 1] = std::clamp(betas[i].imag(), 0.0, beta_max);
     }
-    {
-      ceres::Problem problem;
-      problem.AddResidualBlock(new ProjectedCost(knots, p, y, M), nullptr, b.data());
-      for (int j = 0; j < 2 * M; ++j) {
-        problem.SetParameterLowerBound(b.data(), j, 0.0);
-        problem.SetParameterUpperBound(b.data(), j, beta_max);
-      }
-      ceres::Solver::Summary summary;
-      ceres::Solve(solver_options(o), &problem, &summary);
+    ceres::Problem problem;
+    problem.AddResidualBlock(new ProjectedCost(knots, p, y, M), nullptr, b.data());
+    for (int j = 0; j < 2 * M; ++j) {
+      problem.SetParameterLowerBound(b.data(), j, 0.0);
+      problem.SetParameterUpperBound(b.data(), j, beta_max);
     }
-    std::vector<cplx> projected_betas;
-    for (int i = 0; i < M; ++i) projected_betas.emplace_back(b[2 * i], b[2 * i + 1]);
-    // Stage 2: all 4M parameters from the projected solution (residues by linear least squares).
-    std::vector<HereditaryMode> init = best_residues(knots, p, y, projected_betas);
+    ceres::Solver::Options so = solver_options(o);
+    so.max_num_iterations = o.max_projected_iterations;
+    ceres::Solver::Summary summary;
+    ceres::Solve(so, &problem, &summary);
+    std::vector<cplx> found;
+    for (int i = 0; i < M; ++i) found.emplace_back(b[2 * i], b[2 * i + 1]);
+    projected.push_back({found, summary.IsSolutionUsable() ? summary.final_cost : std::numeric_limits<double>::infinity()});
+  }
+  std::stable_sort(projected.begin(), projected.end(), [](const Projected& a, const Projected& b) { return a.cost < b.cost; });
+
+  // Stage 2 for the best of them: all 4M parameters from the projected solution (residues by linear least squares).
+  HereditaryFit best;
+  best.starts = int(starts.size());
+  double best_cost = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < projected.size() && k < std::size_t(std::max(1, o.refined_starts)); ++k) {
+    std::vector<HereditaryMode> init = best_residues(knots, p, y, projected[k].betas);
     std::vector<double> x(4 * M);
     for (int i = 0; i < M; ++i) {
       x[4 * i] = std::clamp(init[i].alpha.real(), -alpha_max, alpha_max);
@@ -259,7 +270,6 @@ HereditaryFit fit_hereditary(const StressStrainRecord& r, const Segments& s, con
     }
     ceres::Solver::Summary summary;
     ceres::Solve(solver_options(o), &problem, &summary);
-    ++best.starts;
     if (summary.IsSolutionUsable() && summary.final_cost < best_cost) {
       best_cost = summary.final_cost;
       best.modes.resize(M);

@@ -2,8 +2,8 @@
 /// Identification of the hereditary-integral parameters (paper section 3.3): fit the model difference
 /// stress sigma_v(t1) - sigma_v(t2) to the measured one by bounded nonlinear least squares (Ceres trust
 /// region, analytic derivatives) from several deterministic starts. For fixed decay rates beta the
-/// model is linear in the residues alpha, so every start gets its alphas by linear least squares
-/// (variable projection) before the full 4M-parameter refinement.
+/// model is linear in the residues alpha, so every start is first solved over the decay rates only
+/// (variable projection), and the best `refined_starts` of those are refined in all 4M parameters.
 #include <string>
 #include <vector>
 
@@ -19,7 +19,9 @@ struct HereditaryFitOptions {
   double beta_max_factor = 100.0;       ///< bounds 0 <= Re beta, Im beta <= factor / T
   double alpha_max_factor = 1e4;        ///< bounds |Re alpha|, |Im alpha| <= factor * peak stress
   double function_tolerance = 1e-12, gradient_tolerance = 1e-12, parameter_tolerance = 1e-10;
-  int max_iterations = 500;
+  int max_projected_iterations = 500;   ///< stage 1 (decay rates only) per start
+  int refined_starts = 2;               ///< stage 2 (all parameters) from the best stage-1 results
+  int max_iterations = 500;             ///< stage 2 per refined start
 };
 
 struct HereditaryFit {

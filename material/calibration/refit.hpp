@@ -2,7 +2,7 @@
 /// Method step 8 (beyond the paper): consistency refit. The paper identifies the hyperfoam from a
 /// decomposition made with a LINEAR hereditary model, and the Prony series from small-amplitude
 /// dynamic moduli; the solver runs hyperfoam + finite-strain Prony, so the two need not agree.
-/// Starting from the paper's result, the hyperfoam (mu_i [MPa], alpha_i; nu kept) and the Prony
+/// Seeded by the paper's result (its exponents and Prony ratios), the hyperfoam (mu_i [MPa], alpha_i; nu kept) and the Prony
 /// moduli a_i = g_i/(1 - sum g) (tau_i kept) are refitted jointly so that the SOLVER's model matches
 /// both calibration tests at once:
 ///   quasi-static: the solver's model under platen control, evaluated EXACTLY and explicitly by the fast
@@ -16,7 +16,7 @@
 ///   1. global: for every N-subset of `alpha_grid` (and the start's alphas) the inner problem in (mu, a >= 0)
 ///      is solved by alternating linear least squares (non-negative for a), from the start's a;
 ///   2. polish: the best `polished_starts` of them, all parameters jointly, Ceres bounded trust region
-///      (Levenberg-Marquardt) with automatic derivatives (ceres::Jet), bounds a_i >= 0, alpha_i keeps its
+///      (dogleg) with automatic derivatives (ceres::Jet), bounds a_i >= 0, alpha_i keeps its
 ///      sign with 0.2 <= |alpha_i| <= 50;
 ///   3. the lowest-cost polished result whose hyperfoam is Drucker-stable over the tested range is returned.
 #include <optional>
@@ -29,8 +29,8 @@ namespace cushion::calibration {
 
 struct RefitOptions {
   std::vector<double> alpha_grid = {-4.0, -2.0, -1.0, 1.0, 2.0, 3.0, 5.0, 8.0, 12.0, 20.0, 30.0};  ///< start exponents
-  int alternating_iterations = 40;  ///< inner (mu, a) sweeps per grid start
-  int polished_starts = 4;          ///< best grid starts polished jointly
+  int alternating_iterations = 8;   ///< inner (mu, a) sweeps per grid start
+  int polished_starts = 2;          ///< best grid starts polished jointly (two at a time on two threads)
   int max_iterations = 200;         ///< Ceres iterations per polish
   double function_tolerance = 1e-14, gradient_tolerance = 1e-16, parameter_tolerance = 1e-12;
   double stability_tension = 0.5;   ///< required Drucker-stable nominal strain range [-peak, this]

@@ -118,7 +118,7 @@ nlohmann::json report_json(const FitResult& R, const Campaign& campaign) {
     const RefitResult& f = *R.refit;
     j["refit"] = {{"material", material_json(f.material)}, {"converged", f.converged}, {"stable", f.stable},
                   {"improved", f.improved}, {"accepted", f.accepted()}, {"iterations", f.iterations},
-                  {"model_runs", f.evaluations}, {"seconds", f.seconds},
+                  {"starts", f.starts}, {"model_evaluations", f.evaluations}, {"seconds", f.seconds},
                   {"quasi_static_rms_start", f.quasi_static_rms_start}, {"quasi_static_rms", f.quasi_static_rms},
                   {"dynamic_rms_start", f.dynamic_rms_start}, {"dynamic_rms", f.dynamic_rms},
                   {"cost_start", f.cost_start}, {"cost", f.cost}, {"stability", f.stability}, {"ceres", f.report}};

@@ -109,9 +109,11 @@ std::string report_markdown(const FitResult& R, const Campaign& campaign, const 
   if (R.refit) {
     const RefitResult& f = *R.refit;
     hyperfoam_table(o, f.material.terms);
-    o << "\nJoint error of the solver's model: quasi-static " << pct(f.quasi_static_rms_start) << " -> " << pct(f.quasi_static_rms)
-      << ", dynamic (E', E'') " << pct(f.dynamic_rms_start) << " -> " << pct(f.dynamic_rms) << "; " << f.iterations
-      << " iterations, " << f.evaluations << " model runs, " << num(f.seconds, 3) << " s; "
+    o << "\nJoint error of the solver's model (exact fast uniaxial model, finite-amplitude dynamic model) on the "
+      << "quasi-static calibration tests and " << R.dynamic_name << ": quasi-static " << pct(f.quasi_static_rms_start) << " -> "
+      << pct(f.quasi_static_rms) << ", dynamic (E', E'') " << pct(f.dynamic_rms_start) << " -> " << pct(f.dynamic_rms) << "; "
+      << f.starts << " exponent starts, " << f.iterations << " polish iterations, " << f.evaluations << " model evaluations, "
+      << num(f.seconds, 3) << " s; "
       << (f.accepted() ? "accepted" : "NOT accepted") << ".\n";
   } else {
     o << "Not run (--no-refit).\n";

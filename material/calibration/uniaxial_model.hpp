@@ -40,15 +40,17 @@ T lateral_exponent(const T& nu, Lateral lateral) {
 /// Axial long-term PK2 stress S11 [MPa], tension positive, of one hyperfoam term (mu [MPa], alpha) at stretch l.
 template <typename T>
 T term_S11(const T& mu, const T& alpha, const T& c, double l) {
-  using std::pow;
-  return (2.0 * mu / alpha) * (pow(T(l), alpha - 2.0) - pow(T(l), -alpha * c - 2.0));
+  using std::exp;
+  const double ln_l = std::log(l);  // l^p = e^{p ln l}: one exponential per power of a differentiated exponent
+  return (2.0 * mu / alpha) * (exp((alpha - 2.0) * ln_l) - exp((-alpha * c - 2.0) * ln_l));
 }
 
 /// l dS11/dl [MPa] of one term at stretch l: its part of K_v.
 template <typename T>
 T term_l_dS11_dl(const T& mu, const T& alpha, const T& c, double l) {
-  using std::pow;
-  return (2.0 * mu / alpha) * ((alpha - 2.0) * pow(T(l), alpha - 2.0) + (alpha * c + 2.0) * pow(T(l), -alpha * c - 2.0));
+  using std::exp;
+  const double ln_l = std::log(l);
+  return (2.0 * mu / alpha) * ((alpha - 2.0) * exp((alpha - 2.0) * ln_l) + (alpha * c + 2.0) * exp((-alpha * c - 2.0) * ln_l));
 }
 
 /// A sampled stretch history with the Prony recursion factors of every increment, prepared once.

@@ -88,7 +88,7 @@ struct LinearisedSystem::Impl {
 
 LinearisedSystem::LinearisedSystem(const mesh::Mesh& mesh, const std::vector<Section>& sections,
                                    std::vector<PointBase> points, Eigen::VectorXd u_base, AssemblyOptions options)
-    : impl_(new Impl{mesh, sections, std::move(points), std::move(u_base), nullptr, {}}) {
+    : impl_(new Impl{mesh, sections, std::move(points), std::move(u_base), nullptr, {}, {}}) {
   auto frozen_material = std::make_shared<const FrozenTangent>();
   std::vector<Section> frozen_sections = sections;
   for (auto& s : frozen_sections) s.material = frozen_material;

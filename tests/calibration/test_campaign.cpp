@@ -89,6 +89,27 @@ TEST_F(Campaign, DefaultAndExplicitUse) {
   EXPECT_EQ(c.dynamic_calibration(), nullptr);
 }
 
+TEST_F(Campaign, SeveralQuasiStaticCalibrationTestsOneDynamic) {
+  // Several rates may calibrate (the first listed carries the paper's method); a second dynamic one is an error.
+  const std::string text = R"({"specimen": {"length_mm": 80, "width_mm": 80, "thickness_mm": 80, "density_kg_m3": 65},
+      "tests": [{"kind": "quasi_static", "file": "qs_120.csv", "rate_mm_min": 120, "name": "v"},
+                {"kind": "quasi_static", "file": "qs_120.csv", "rate_mm_min": 120, "use": "calibration", "name": "a"},
+                {"kind": "quasi_static", "file": "qs_120.csv", "rate_mm_min": 30, "use": "calibration", "name": "b"}]})";
+  const auto c = cal::read_campaign(manifest(text));
+  EXPECT_EQ(c.quasi_static_calibration(), &c.quasi_static[1]);
+  const auto all = c.quasi_static_calibration_tests();
+  ASSERT_EQ(all.size(), 2u);
+  EXPECT_EQ(all[0], &c.quasi_static[1]);
+  EXPECT_EQ(all[1], &c.quasi_static[2]);
+  EXPECT_EQ(c.quasi_static[0].use, cal::TestUse::validation);
+  const std::string two_dynamic = R"({"specimen": {"length_mm": 80, "width_mm": 80, "thickness_mm": 80, "density_kg_m3": 65},
+      "tests": [{"kind": "dynamic", "file": "dyn_25.csv", "preload_strain": 0.25, "acceleration_amplitude_m_s2": 0.25, "use": "calibration"},
+                {"kind": "dynamic", "file": "dyn_25.csv", "preload_strain": 0.4, "acceleration_amplitude_m_s2": 0.25, "use": "calibration"}]})";
+  const std::string m = error_of(two_dynamic);
+  EXPECT_NE(m.find("a second dynamic calibration test"), std::string::npos) << m;
+  EXPECT_NE(m.find("campaign.json"), std::string::npos) << m;
+}
+
 TEST_F(Campaign, BadManifestKeysNameFileAndKey) {
   auto expect = [&](const std::string& text, const std::string& key) {
     const std::string m = error_of(text);

@@ -61,7 +61,7 @@ TEST(Compare, TruthAgainstItsOwnCampaignIsAtTheNoiseLevel) {
     SCOPED_TRACE(t.name);
     ASSERT_TRUE(t.failure.empty()) << t.failure;
     ASSERT_TRUE(t.noise.known);
-    EXPECT_GT(t.noise_ratio(), 0.5);   // a model equal to the truth still sees the noise
+    EXPECT_GT(t.noise_ratio(), 0.3);   // sees the noise (dynamic: the scatter about a cubic in log f overestimates it)
     EXPECT_LE(t.noise_ratio(), 1.5);
   }
   EXPECT_TRUE(r.at_noise_level(1.5));

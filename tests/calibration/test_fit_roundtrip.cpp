@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <random>
 
 #include "material/calibration/fit_pipeline.hpp"
 #include "material/calibration/lab.hpp"
@@ -22,55 +21,46 @@ cal::ViscoHyperfoam truth() {
           {{0.283893, 0.01}, {0.234004, 0.1}, {0.106786, 1.0}, {0.147292, 10.0}, {0.096690, 100.0}}};
 }
 
-/// A campaign from the lab, small sample counts: 120 mm/min to 75 %, 2 s hold (4 Hz sampling, no preflex);
-/// dynamic at 25 % preload, 0.25 m/s^2 peak to peak, 10 frequencies 1..20 Hz.
-cal::Campaign lab_campaign(double noise) {
+/// A campaign from the lab as the shipped one (cases/campaign_synthetic): quasi-static 120 mm/min (10 Hz), 30 mm/min
+/// (4 Hz) and 480 mm/min (40 Hz) to 75 %, 2 s hold, no preflex, all three marked for calibration (the first carries
+/// the paper's method); dynamic at 25 % preload, 0.25 m/s^2 peak to peak, 10 frequencies 1..20 Hz, 20 cycles, the
+/// last 10 sine-fitted, 256 steps per cycle. Noise (seeded): `noise` of the force reading (quasi-static) and of
+/// the oscillating force amplitude (dynamic), plus 0.02 N.
+cal::Campaign lab_campaign(double noise, int rates = 3) {
   const auto model = cal::build_model(truth());
   const cal::LabSpecimen specimen;
   cal::LabNoise lab_noise;
   lab_noise.seed = 7;
   lab_noise.force_relative = noise;
-  cal::QuasiStaticProtocol q;
-  q.sample_hz = 4.0;
-  q.preload_cycle = false;
-  cal::QuasiStaticRecord qr = cal::run_quasi_static(*model, specimen, q);
-  cal::add_force_noise(qr, lab_noise, 0);
-  cal::QuasiStaticProtocol slow = q;  // a second rate: 30 mm/min, 1 Hz
-  slow.rate_mm_min = 30.0;
-  slow.sample_hz = 1.0;
-  cal::QuasiStaticRecord sr = cal::run_quasi_static(*model, specimen, slow);
-  cal::add_force_noise(sr, lab_noise, 2);
-  cal::DynamicProtocol d;
-  d.frequencies_Hz = {1, 2, 3, 4, 6, 8, 10, 13, 16, 20};
-  d.cycles = 6;
-  d.fit_cycles = 3;
-  d.steps_per_cycle = 32;
-  // Dynamic noise: 0.5 % on the measured moduli (the lab's noise is relative to the total force, static
-  // preload included, which at 20 Hz (0.008 mm amplitude) would swamp the oscillation).
-  const cal::DynamicRecord dr = cal::run_dynamic(*model, specimen, d, cal::LabNoise{}, 1);
-  std::mt19937_64 engine(11);
-  std::normal_distribution<double> unit(0.0, 1.0);
-
+  lab_noise.force_floor = noise > 0.0 ? 0.02 : 0.0;
   cal::Campaign c;
   c.specimen = {80.0, 80.0, 80.0, 6.5e-11};
-  cal::QuasiStaticTest qt;
-  qt.name = "qs";
-  qt.use = cal::TestUse::calibration;
-  qt.rate = 2.0;
-  qt.record = cal::to_nominal("qs.csv", qr.time_s, qr.displacement_mm, qr.force_N, c.specimen);
-  c.quasi_static.push_back(qt);
-  cal::QuasiStaticTest st;
-  st.name = "qs_slow";
-  st.rate = 0.5;
-  st.record = cal::to_nominal("qs_slow.csv", sr.time_s, sr.displacement_mm, sr.force_N, c.specimen);
-  c.quasi_static.push_back(st);
+  const double rate_mm_min[] = {120.0, 30.0, 480.0}, sample_hz[] = {10.0, 4.0, 40.0};
+  for (int k = 0; k < rates; ++k) {
+    cal::QuasiStaticProtocol q;
+    q.rate_mm_min = rate_mm_min[k];
+    q.sample_hz = sample_hz[k];
+    q.preload_cycle = false;
+    cal::QuasiStaticRecord r = cal::run_quasi_static(*model, specimen, q);
+    cal::add_force_noise(r, lab_noise, k);
+    cal::QuasiStaticTest t;
+    t.name = "qs_" + std::to_string(int(rate_mm_min[k]));
+    t.use = cal::TestUse::calibration;
+    t.rate = rate_mm_min[k] / 60.0;
+    t.record = cal::to_nominal(t.name + ".csv", r.time_s, r.displacement_mm, r.force_N, c.specimen);
+    c.quasi_static.push_back(t);
+  }
+  cal::DynamicProtocol d;
+  d.frequencies_Hz = {1, 2, 3, 4, 6, 8, 10, 13, 16, 20};
+  d.steps_per_cycle = 256;
+  const cal::DynamicRecord dr = cal::run_dynamic(*model, specimen, d, lab_noise, 10);
   cal::DynamicTest dt;
   dt.name = "dyn";
   dt.use = cal::TestUse::calibration;
   dt.preload_strain = 0.25;
+  dt.acceleration_amplitude = 250.0;  // mm/s^2, peak to peak
   for (std::size_t i = 0; i < dr.frequency_Hz.size(); ++i) {
-    const double E = dr.dynamic_modulus_kPa[i] * 1e-3 * (1.0 + noise * unit(engine)),
-                 ph = dr.phase_deg[i] * M_PI / 180.0 * (1.0 + noise * unit(engine));
+    const double E = dr.dynamic_modulus_kPa[i] * 1e-3, ph = dr.phase_deg[i] * M_PI / 180.0;
     dt.moduli.frequency.push_back(dr.frequency_Hz[i]);
     dt.moduli.storage.push_back(E * std::cos(ph));
     dt.moduli.loss.push_back(E * std::sin(ph));
@@ -98,49 +88,65 @@ double max_abs(const std::vector<double>& v) {
 
 std::ostringstream quiet;
 
-/// The fit options matching the lab's dynamic schedule above (6 cycles, last 3 measured).
-cal::FitOptions options() {
-  cal::FitOptions o;
-  o.dynamic_schedule.cycles = 6;
-  o.dynamic_schedule.fit_cycles = 3;
-  o.refit_all_quasi_static = true;  // two rates: the long-term curve is identifiable (one rate is not)
-  return o;
+/// max over the frequencies of the relative error of E' and E'' of `m` about the 25 % preload (small
+/// amplitude, relaxed) against the truth's.
+double dynamic_curve_error(const cal::ViscoHyperfoam& m) {
+  std::vector<double> f;
+  for (int i = 1; i <= 20; ++i) f.push_back(i);
+  const auto T = cal::model_dynamic_moduli(*cal::build_model(truth()), mat::Hyperfoam(truth().terms), 0.25, f);
+  const auto M = cal::model_dynamic_moduli(*cal::build_model(m), mat::Hyperfoam(m.terms), 0.25, f);
+  double err = 0.0;
+  for (std::size_t i = 0; i < f.size(); ++i)
+    err = std::max({err, std::abs(M.storage[i] / T.storage[i] - 1.0), std::abs(M.loss[i] / T.loss[i] - 1.0)});
+  return err;
 }
 
 }  // namespace
 
-TEST(FitRoundTrip, NoiseFreeHereditaryFitAndRefitImprovesOnThePaperMaterial) {
+TEST(FitRoundTrip, NoiseFreeRecoversTheTruth) {
   const cal::Campaign c = lab_campaign(0.0);
-  const cal::FitResult R = cal::fit_pipeline(c, options(), quiet);
+  const cal::FitResult R = cal::fit_pipeline(c, cal::FitOptions{}, quiet);
   EXPECT_NEAR(R.segments.peak_strain, 0.75, 1e-9);
   // Step 3: the hereditary difference stress, RMSE below 1 % of its peak (acceptance).
   EXPECT_LT(R.hereditary.rmse, 0.01 * max_abs(R.hereditary.measured));
-  // Step 8: the solver's model after the refit is closer to every test than the paper's material.
+  // Step 8 on the three calibration rates: the long-term curve within 0.5 % of its peak over the tested
+  // strain range and every Prony modulus within 1 % (acceptance; reached: 0.005 % and 0.08 %).
   ASSERT_TRUE(R.refit.has_value());
-  EXPECT_TRUE(R.refit->converged) << R.refit->report;
-  for (const auto& t : R.comparisons) EXPECT_LT(t.error_refit, t.error_paper) << t.name;
-}
-
-// ACCEPTANCE NOT MET (see the h4b report): the long-term curve within 0.5 % and the Prony moduli within 1 %
-// after the refit. The joint refit reaches a few % on both tests but stops in a neighbouring minimum where
-// the hyperfoam trades off against the 10 s and 100 s Prony terms. Kept, disabled, as the target.
-TEST(FitRoundTrip, DISABLED_NoiseFreeRecoversTheTruth) {
-  const cal::Campaign c = lab_campaign(0.0);
-  const cal::FitResult R = cal::fit_pipeline(c, options(), quiet);
-  ASSERT_TRUE(R.refit.has_value());
+  EXPECT_TRUE(R.refit->accepted()) << R.refit->report;
+  EXPECT_EQ(R.default_choice, cal::DefaultMaterial::refit);
   EXPECT_LT(curve_error(R.refit->material, R.segments.peak_strain), 0.005);
   const auto a_truth = cal::long_term_ratios(truth().prony);
   const auto a_fit = cal::long_term_ratios(R.refit->material.prony);
-  for (std::size_t i = 0; i < 4; ++i) EXPECT_NEAR(a_fit[i], a_truth[i], 0.01 * a_truth[i]) << "term " << i;
+  ASSERT_EQ(a_fit.size(), a_truth.size());
+  for (std::size_t i = 0; i < a_truth.size(); ++i) EXPECT_NEAR(a_fit[i], a_truth[i], 0.01 * a_truth[i]) << "term " << i;
+  // The solver's model after the refit is closer to every test than the paper's material.
+  for (const auto& t : R.comparisons) EXPECT_LT(t.error_refit, t.error_paper) << t.name;
 }
 
-TEST(FitRoundTrip, HalfPercentNoiseGivesIdenticalResultsOnTwoRuns) {
-  cal::FitOptions o = options();
-  o.refit_options.max_iterations = 4;  // determinism does not need convergence
-  const cal::FitResult R1 = cal::fit_pipeline(lab_campaign(0.005), o, quiet);
-  const cal::FitResult R2 = cal::fit_pipeline(lab_campaign(0.005), o, quiet);
+TEST(FitRoundTrip, OneRateLeavesTheSlowTermsAndTheLongTermCurveTradingOff) {
+  // With only the 120 mm/min test (the default method) the refit fits both tests to 0.1 % but the
+  // 100 s term and the long-term curve trade off: the recovery misses the 1 % / 0.5 % targets. This is why
+  // the shipped campaign calibrates on three rates (README); the figures are in the h4c report.
+  const cal::Campaign c = lab_campaign(0.0, 1);
+  const cal::FitResult R = cal::fit_pipeline(c, cal::FitOptions{}, quiet);
+  ASSERT_TRUE(R.refit.has_value());
+  EXPECT_LT(R.refit->quasi_static_rms, 0.002);
+  EXPECT_LT(R.refit->dynamic_rms, 0.002);
+  const auto a_truth = cal::long_term_ratios(truth().prony);
+  const auto a_fit = cal::long_term_ratios(R.refit->material.prony);
+  EXPECT_GT(std::abs(a_fit[4] / a_truth[4] - 1.0) + curve_error(R.refit->material, R.segments.peak_strain), 0.01);
+}
+
+TEST(FitRoundTrip, HalfPercentNoiseStaysWithinTwoPercentAndIsRepeatable) {
+  const cal::FitResult R1 = cal::fit_pipeline(lab_campaign(0.005), cal::FitOptions{}, quiet);
+  const cal::FitResult R2 = cal::fit_pipeline(lab_campaign(0.005), cal::FitOptions{}, quiet);
   ASSERT_TRUE(R1.refit && R2.refit);
-  EXPECT_LT(R1.hereditary.rmse, 0.02 * max_abs(R1.hereditary.measured) + 3.0 * R1.segments.stress_noise);
+  EXPECT_TRUE(R1.refit->accepted()) << R1.refit->report;
+  // Recovered curves within 2 %: the long-term curve (of its peak) and E', E'' about the preload.
+  EXPECT_LT(curve_error(R1.refit->material, R1.segments.peak_strain), 0.02);
+  EXPECT_LT(dynamic_curve_error(R1.refit->material), 0.02);
+  EXPECT_LT(R1.hereditary.rmse, 0.02 * max_abs(R1.hereditary.measured));
+  // Identical on every run (seeded noise, deterministic fits).
   for (std::size_t i = 0; i < R1.refit->material.terms.size(); ++i) {
     EXPECT_EQ(R1.refit->material.terms[i].mu, R2.refit->material.terms[i].mu);
     EXPECT_EQ(R1.refit->material.terms[i].alpha, R2.refit->material.terms[i].alpha);

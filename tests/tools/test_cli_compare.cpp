@@ -2,6 +2,7 @@
 // run history grows by one run per compare, and bad input gives a clear message (exit 2) or a warning
 // while the rest of the analysis is still reported.
 #include <gtest/gtest.h>
+#include <unistd.h>
 #include <sys/wait.h>
 
 #include <cstdio>
@@ -34,7 +35,8 @@ CommandRun run_cushion(const std::string& arguments) {
 }
 
 fs::path hidden() { return fs::path(CUSHION_SOURCE_DIR) / "cases" / "hidden_effects"; }
-fs::path scratch() { return fs::temp_directory_path() / "cushion_test_cli_compare"; }
+/// One folder per process: ctest runs the tests of this file as parallel processes.
+fs::path scratch() { return fs::temp_directory_path() / ("cushion_test_cli_compare_" + std::to_string(::getpid())); }
 
 std::size_t count_lines(const fs::path& p) {
   std::ifstream in(p);

@@ -1,6 +1,7 @@
 // `cushion fit` as a user runs it: a good campaign gives every documented output; bad campaigns give a
 // non-zero exit, one message naming the file and the line/column (or key), and no output folder.
 #include <gtest/gtest.h>
+#include <unistd.h>
 #include <sys/wait.h>
 
 #include <cstdio>
@@ -46,7 +47,8 @@ void write(const fs::path& p, const std::string& text) { std::ofstream(p) << tex
 /// A small SYNTHETIC campaign made once by `cushion lab` (few samples, 4 frequencies).
 class CliFit : public ::testing::Test {
  protected:
-  static fs::path root() { return fs::temp_directory_path() / "cushion_test_cli_fit"; }
+  // One folder per process: ctest runs the tests of this suite as parallel processes.
+  static fs::path root() { return fs::temp_directory_path() / ("cushion_test_cli_fit_" + std::to_string(::getpid())); }
   static fs::path campaign() { return root() / "campaign"; }
   static void SetUpTestSuite() {
     fs::remove_all(root());
