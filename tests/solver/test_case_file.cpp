@@ -241,10 +241,10 @@ TEST(CaseFile, NonFiniteNumbersAreRejected) {
   expect_error(error_of(j, "overflow"), "value_mm", "invalid JSON");
 }
 
-TEST(CaseFile, ReservedFeaturesSayNotSupportedYet) {
-  auto j = valid_case();
+TEST(CaseFile, StepTypeSpecificKeysAreChecked) {
+  auto j = valid_case();  // a steady_state step takes its own keys, not those of a time step
   j["steps"][1]["type"] = "steady_state";
-  expect_error(error_of(j, "steady"), "steps[1].type", "not supported yet");
+  expect_error(error_of(j, "steady"), "steps[1].time_period_s", "does not apply to a \"steady_state\" step");
   j = valid_case();  // contact is parsed for real now: its unknown keys are named
   j["steps"][0]["contact"] = nlohmann::json::array({{{"name", "platen"}, {"set", "top"}, {"colour", 1}}});
   expect_error(error_of(j, "contact"), "steps[0].contact[0]", "colour");
