@@ -11,24 +11,13 @@
 
 namespace fs = std::filesystem;
 
+#include "cli_runner.hpp"
+
 namespace {
 
-struct CommandRun {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
-
-CommandRun run_cushion(const std::string& arguments) {
-  const std::string command = std::string("\"") + CUSHION_BINARY + "\" " + arguments + " 2>&1";
-  CommandRun run;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return run;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe)) run.output += buffer;
-  const int status = pclose(pipe);
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
+using cli_test::CommandRun;
+using cli_test::quoted;
+using cli_test::run_cushion;
 
 fs::path scratch_dir() {
   const fs::path dir = fs::temp_directory_path() /
