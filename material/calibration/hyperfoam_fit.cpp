@@ -91,6 +91,9 @@ HyperfoamFit fit_hyperfoam(const ElasticCurve& curve, const HyperfoamFitOptions&
   };
   std::vector<Candidate> candidates;
   HyperfoamFit fit;
+  // Every start runs twice: free, and with mu_i >= 0 (with nu >= 0 a sufficient condition for Drucker
+  // stability), so that a stable candidate exists whenever the free optimum is unstable.
+  for (const bool positive_mu : {false, true})
   for (const auto& a0 : alpha_starts(N)) {
     std::vector<double> mu(N), alpha = a0, nu{o.nu};
     // Variable projection start: mu linear for fixed alpha, nu.
@@ -103,6 +106,8 @@ HyperfoamFit fit_hyperfoam(const ElasticCurve& curve, const HyperfoamFitOptions&
     }
     const Eigen::VectorXd m0 = A.colPivHouseholderQr().solve(b);
     for (int i = 0; i < N; ++i) mu[i] = std::isfinite(m0(i)) ? m0(i) : 0.0;
+    if (positive_mu)
+      for (int i = 0; i < N; ++i) mu[i] = std::max(mu[i], 1e-3 * peak / N);
 
     auto* cost = new ceres::DynamicAutoDiffCostFunction<CurveResidual, 4>(
         new CurveResidual{&e, &s, peak, N, o.lateral});
@@ -113,6 +118,7 @@ HyperfoamFit fit_hyperfoam(const ElasticCurve& curve, const HyperfoamFitOptions&
     ceres::Problem problem;
     problem.AddResidualBlock(cost, nullptr, mu.data(), alpha.data(), nu.data());
     for (int i = 0; i < N; ++i) {
+      if (positive_mu) problem.SetParameterLowerBound(mu.data(), i, 0.0);
       problem.SetParameterLowerBound(alpha.data(), i, alpha[i] > 0 ? 0.2 : -o.alpha_max);
       problem.SetParameterUpperBound(alpha.data(), i, alpha[i] > 0 ? o.alpha_max : -0.2);
     }
