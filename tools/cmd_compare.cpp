@@ -11,6 +11,7 @@
 #include "material/calibration/run_history.hpp"
 #include "material/io/material_file.hpp"
 #include "tools/command.hpp"
+#include "tools/gnuplot.hpp"
 
 namespace {
 
@@ -18,14 +19,6 @@ struct CompareCli {
   std::string material, campaign, out, label, history;
   int cycles = 5, steps = 40;
 };
-
-std::string gnuplot_path() {
-#ifdef CUSHION_GNUPLOT
-  return cushion::calibration::find_gnuplot(CUSHION_GNUPLOT);
-#else
-  return cushion::calibration::find_gnuplot();
-#endif
-}
 
 const cushion::tools::Registrar reg{"compare", [](CLI::App& app) {
   auto opt = std::make_shared<CompareCli>();
@@ -50,7 +43,7 @@ const cushion::tools::Registrar reg{"compare", [](CLI::App& app) {
     CompareResult r = compare_campaign(*def.model, campaign, o);
     for (const auto& w : specimen_warnings(def.spec.density, campaign)) r.warnings.insert(r.warnings.begin(), w);
     const std::string label = opt->label.empty() ? def.spec.name : opt->label;
-    const std::string gnuplot = gnuplot_path();
+    const std::string gnuplot = cushion::tools::gnuplot_path();
     const auto drawn = write_compare_outputs(r, label, opt->out, gnuplot);
     std::cout << "cushion compare: " << label << " vs " << campaign.manifest.string() << " (" << r.tests.size()
               << " tests, " << r.seconds << " s)\n\n"

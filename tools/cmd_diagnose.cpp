@@ -11,6 +11,7 @@
 #include "material/input_error.hpp"
 #include "material/io/material_file.hpp"
 #include "tools/command.hpp"
+#include "tools/gnuplot.hpp"
 
 namespace {
 
@@ -19,14 +20,6 @@ struct DiagnoseCli {
   std::vector<std::string> candidates;
   int threads = 2;
 };
-
-std::string gnuplot_path() {
-#ifdef CUSHION_GNUPLOT
-  return cushion::calibration::find_gnuplot(CUSHION_GNUPLOT);
-#else
-  return cushion::calibration::find_gnuplot();
-#endif
-}
 
 const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
   auto opt = std::make_shared<DiagnoseCli>();
@@ -48,7 +41,7 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
       if (!cushion::material::find_effect(k)) throw cushion::InputError("--candidates: unknown effect kind '" + k + "'");
     Diagnosis d = diagnose(def.spec, campaign, o, std::cout);
     for (const auto& w : specimen_warnings(def.spec.density, campaign)) d.warnings.insert(d.warnings.begin(), w);
-    write_diagnosis_outputs(d, opt->out, gnuplot_path());
+    write_diagnosis_outputs(d, opt->out, cushion::tools::gnuplot_path());
     std::cout << "\n" << diagnosis_markdown(d) << "\ndiagnose: " << d.seconds << " s; written to " << opt->out << "\n";
   });
 }};

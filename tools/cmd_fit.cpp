@@ -9,6 +9,7 @@
 #include "material/calibration/fit_pipeline.hpp"
 #include "material/input_error.hpp"
 #include "tools/command.hpp"
+#include "tools/gnuplot.hpp"
 
 namespace {
 
@@ -25,14 +26,6 @@ struct FitCliOptions {
   double preload_rate = 30.0;
   bool relaxed_preload = false;
 };
-
-std::string gnuplot_executable() {
-#ifdef CUSHION_GNUPLOT
-  return cushion::calibration::find_gnuplot(CUSHION_GNUPLOT);
-#else
-  return cushion::calibration::find_gnuplot();
-#endif
-}
 
 const cushion::tools::Registrar reg{"fit", [](CLI::App& app) {
   auto opt = std::make_shared<FitCliOptions>();
@@ -92,7 +85,7 @@ const cushion::tools::Registrar reg{"fit", [](CLI::App& app) {
     std::cout << "fit: " << campaign.quasi_static.size() << " quasi-static and " << campaign.dynamic.size()
               << " dynamic test(s)\n";
     const FitResult result = fit_pipeline(campaign, o, std::cout);
-    const auto plots = write_fit_outputs(result, campaign, opt->out, gnuplot_executable(), std::cout);
+    const auto plots = write_fit_outputs(result, campaign, opt->out, cushion::tools::gnuplot_path(), std::cout);
     std::cout << "fit: default material (" << (result.default_choice == DefaultMaterial::refit ? "refit" : "paper")
               << "): " << result.default_reason << "\n";
     std::cout << "fit: outputs in " << opt->out << "/ :";

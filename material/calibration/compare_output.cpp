@@ -8,17 +8,13 @@
 #include "material/calibration/plot.hpp"
 #include "material/io/csv.hpp"
 
+#include "material/io/text_support.hpp"
+
 namespace cushion::calibration {
 
 namespace fs = std::filesystem;
 
 namespace {
-
-void write_text(const fs::path& file, const std::string& text) {
-  std::ofstream out(file);
-  out << text;
-  if (!out) throw std::runtime_error(file.string() + ": cannot write");
-}
 
 std::string fixed(double v, int digits) {
   std::ostringstream o;
@@ -96,7 +92,7 @@ PlotFiles write_test_plot(const TestCompare& t, const fs::path& dir) {
                "model_phase_deg", "residual_phase_deg", "noise_modulus_kPa", "noise_phase_deg"},
               {t.x, m, d, r, t.measured_phase, t.model_phase, rp, sn, sp}, {"cushion compare: " + t.name});
   }
-  write_text(f.script, two_panel_script(t, f.csv.filename().string(), f.png.filename().string()));
+  io::write_file_atomically(f.script, two_panel_script(t, f.csv.filename().string(), f.png.filename().string()));
   return f;
 }
 
@@ -161,10 +157,10 @@ std::string compare_table(const CompareResult& result) {
 std::vector<fs::path> write_compare_outputs(const CompareResult& result, const std::string& label, const fs::path& dir,
                                             const std::string& gnuplot) {
   fs::create_directories(dir);
-  write_text(dir / "report.json", compare_json(result, label).dump(2) + "\n");
+  io::write_file_atomically(dir / "report.json", compare_json(result, label).dump(2) + "\n");
   std::string summary = "# cushion compare: " + label + "\n\n" + compare_table(result);
   for (const auto& w : result.warnings) summary += "\nwarning: " + w;
-  write_text(dir / "summary.md", summary + "\n");
+  io::write_file_atomically(dir / "summary.md", summary + "\n");
   std::vector<PlotFiles> plots;
   for (const auto& t : result.tests)
     if (t.failure.empty()) plots.push_back(write_test_plot(t, dir));

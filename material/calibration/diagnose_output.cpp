@@ -6,17 +6,13 @@
 
 #include "material/calibration/compare_output.hpp"
 
+#include "material/io/text_support.hpp"
+
 namespace cushion::calibration {
 
 namespace fs = std::filesystem;
 
 namespace {
-
-void write_text(const fs::path& file, const std::string& text) {
-  std::ofstream out(file);
-  out << text;
-  if (!out) throw std::runtime_error(file.string() + ": cannot write");
-}
 
 std::string fmt(double v, int digits = 3) {
   std::ostringstream o;
@@ -107,13 +103,13 @@ std::string diagnosis_markdown(const Diagnosis& d) {
 
 void write_diagnosis_outputs(const Diagnosis& d, const fs::path& dir, const std::string& gnuplot) {
   fs::create_directories(dir);
-  write_text(dir / "report.json", diagnosis_json(d).dump(2) + "\n");
-  write_text(dir / "diagnosis.md", diagnosis_markdown(d));
+  io::write_file_atomically(dir / "report.json", diagnosis_json(d).dump(2) + "\n");
+  io::write_file_atomically(dir / "diagnosis.md", diagnosis_markdown(d));
   write_compare_outputs(d.baseline, "baseline", dir / "baseline", gnuplot);
   fs::remove(dir / "fragment.json");
   fs::remove(dir / "material_extended.json");
   if (d.winner) {
-    write_text(dir / "fragment.json", d.fragment.dump(2) + "\n");
+    io::write_file_atomically(dir / "fragment.json", d.fragment.dump(2) + "\n");
     material::write_material_file(d.extended, dir / "material_extended.json");
     write_compare_outputs(d.candidates[*d.winner].compare, d.candidates[*d.winner].name(), dir / "extended", gnuplot);
   }

@@ -8,6 +8,8 @@
 #include "material/calibration/report_fit.hpp"
 #include "material/input_error.hpp"
 
+#include "material/io/text_support.hpp"
+
 namespace cushion::calibration {
 
 namespace fs = std::filesystem;
@@ -39,12 +41,6 @@ std::vector<double> phase(const DynamicModuli& d) {
   std::vector<double> p;
   for (std::size_t i = 0; i < d.frequency.size(); ++i) p.push_back(std::atan2(d.loss[i], d.storage[i]) * 180.0 / std::numbers::pi);
   return p;
-}
-
-void write_text(const fs::path& file, const std::string& text) {
-  std::ofstream out(file);
-  out << text;
-  if (!out) throw std::runtime_error(file.string() + ": cannot write");
 }
 
 }  // namespace
@@ -152,16 +148,16 @@ std::vector<PlotFiles> write_fit_outputs(const FitResult& R, const Campaign& cam
         to_spec(R.default_material, "foam", provenance + ": default = " + (refit_default ? "refit" : "paper") + " (" +
                                                 R.default_reason + ")", density),
         tmp / "material.json");
-    write_text(tmp / "abaqus_paper.inp", abaqus_cards(R.paper_material, "FOAM_PAPER", density, provenance + ", paper's method"));
-    write_text(tmp / "abaqus_refit.inp", abaqus_cards(refit_material, "FOAM_REFIT", density, provenance + ", refit"));
+    io::write_file_atomically(tmp / "abaqus_paper.inp", abaqus_cards(R.paper_material, "FOAM_PAPER", density, provenance + ", paper's method"));
+    io::write_file_atomically(tmp / "abaqus_refit.inp", abaqus_cards(refit_material, "FOAM_REFIT", density, provenance + ", refit"));
 
     std::vector<PlotFiles> files;
     for (const Plot& p : fit_plots(R, campaign)) files.push_back(write_plot(p, tmp));
     draw_plots(files, tmp, gnuplot);
     for (const auto& f : files)
       if (!f.drawn) log << "fit: note: " << f.message << "\n";
-    write_text(tmp / "report.json", report_json(R, campaign).dump(1) + "\n");
-    write_text(tmp / "report.md", report_markdown(R, campaign, files));
+    io::write_file_atomically(tmp / "report.json", report_json(R, campaign).dump(1) + "\n");
+    io::write_file_atomically(tmp / "report.md", report_markdown(R, campaign, files));
     fs::remove_all(dir);
     fs::rename(tmp, dir);
     for (auto& f : files) {
