@@ -23,18 +23,13 @@ void validate(const std::vector<PronyTerm>& terms) {
   if (!(sum_g(terms) < 1.0)) throw std::invalid_argument("Prony: sum of g_i must be < 1");
 }
 
-/// Decay e^{-x} and weight (1 - e^{-x})/x of the exact recursion for S_inf linear over the
-/// increment, x = dt/tau (expm1 form; limits 1 and 1 at x = 0, the instantaneous jump).
-struct Recursion {
-  double decay, weight;
-};
-Recursion recursion(double dt, double tau) {
+}  // namespace
+
+PronyRecursion prony_recursion(double dt, double tau) {
   const double x = dt / tau;
   if (x == 0.0) return {1.0, 1.0};
   return {std::exp(-x), -std::expm1(-x) / x};
 }
-
-}  // namespace
 
 std::vector<PronyTerm> prony_from_absolute(double E_inf, const std::vector<double>& E, const std::vector<double>& tau) {
   if (E.size() != tau.size()) throw std::invalid_argument("prony_from_absolute: E and tau differ in length");
@@ -97,7 +92,7 @@ PointResponse Viscoelastic::integrate(const Mat3& /*F_old*/, const Mat3& F_new, 
   r.S = e.S;
   double tangent_factor = 1.0;
   for (std::size_t i = 0; i < terms_.size(); ++i) {
-    const Recursion q = recursion(dt, terms_[i].tau);
+    const PronyRecursion q = prony_recursion(dt, terms_[i].tau);
     const Vec6 H = q.decay * Eigen::Map<const Vec6>(state_old.data() + 6 * (i + 1)) + q.weight * dS_inf;
     Eigen::Map<Vec6>(state_new.data() + 6 * (i + 1)) = H;
     r.S += a_[i] * H;

@@ -33,6 +33,14 @@ std::vector<PronyTerm> prony_from_absolute(double E_inf, const std::vector<doubl
 
 /// Complex modulus factor 1 + sum a_i i w tau_i / (1 + i w tau_i), a_i = g_i/(1 - sum g) (w in rad/s):
 /// multiply a long-term modulus by it to get the storage (real) and loss (imaginary) moduli.
+/// Decay e^{-x} and weight (1 - e^{-x})/x, x = dt/tau, of the exact recursion of a Prony state over an
+/// increment dt [s] for a relaxation time tau [s] when the long-term stress is linear in time over the
+/// increment (expm1 form; both 1 at dt = 0, the instantaneous jump): H_n+1 = decay H_n + weight dS_inf.
+struct PronyRecursion {
+  double decay, weight;
+};
+PronyRecursion prony_recursion(double dt, double tau);
+
 std::complex<double> prony_complex_factor(const std::vector<PronyTerm>& terms, double omega);
 
 class Viscoelastic final : public Material {

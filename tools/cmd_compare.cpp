@@ -1,12 +1,15 @@
-// `cushion compare MATERIAL.json CAMPAIGN.json -o DIR [--label NAME] [--history DIR]`: model vs every test
-// of a campaign with error figures per test and region next to the measurement noise, plots, report.json,
-// and optionally a history of runs (error per test across model versions).
+// `cushion compare [MATERIAL.json] CAMPAIGN.json -o DIR [--run RUN_DIR]... [--label NAME] [--history DIR]`:
+// model vs every test of a campaign with error figures per test and region next to the measurement noise,
+// plots, report.json, and optionally a history of runs (error per test across model versions).
+// Material-level tests run through the material model (MATERIAL); structure-level tests (indentation,
+// dynamic_stiffness) are read from the output folders of `cushion run` (--run).
 #include <filesystem>
 #include <iostream>
 
 #include "material/calibration/campaign.hpp"
 #include "material/calibration/compare.hpp"
 #include "material/calibration/compare_output.hpp"
+#include "material/calibration/compare_structure.hpp"
 #include "material/calibration/plot.hpp"
 #include "material/calibration/run_history.hpp"
 #include "material/io/material_file.hpp"
@@ -16,18 +19,25 @@
 namespace {
 
 struct CompareCli {
-  std::string material, campaign, out, label, history;
+  std::vector<std::string> files;  // [material] campaign
+  std::vector<std::string> runs;
+  std::string out, label, history;
   int cycles = 5, steps = 40;
 };
 
 const cushion::tools::Registrar reg{"compare", [](CLI::App& app) {
   auto opt = std::make_shared<CompareCli>();
-  CLI::App* sub = app.add_subcommand("compare", "Compare a material with every test of a campaign (error per test and "
-                                                "region vs measurement noise, plots, report.json)");
-  sub->add_option("material", opt->material, "material file (JSON)")->required();
-  sub->add_option("campaign", opt->campaign, "campaign manifest (JSON)")->required();
+  CLI::App* sub = app.add_subcommand("compare", "Compare a material and/or FE runs with every test of a campaign (error per "
+                                                "test and region vs measurement noise, plots, report.json)");
+  sub->add_option("files", opt->files,
+                  "MATERIAL.json CAMPAIGN.json, or CAMPAIGN.json alone with --run (structure-level tests only)")
+      ->required()
+      ->expected(1, 2);
   sub->add_option("-o,--output", opt->out, "output folder (report.json, summary.md, compare_<test>.png/.csv/.gp)")
       ->required();
+  sub->add_option("--run", opt->runs,
+                  "output folder of a `cushion run` holding the model side of the structure-level tests (repeatable; "
+                  "each test uses the first folder that has its file)");
   sub->add_option("--label", opt->label, "model version name for the report and the history (default: material name)");
   sub->add_option("--history", opt->history, "folder of the run history (history.csv and history_plot.png), appended");
   sub->add_option("--dynamic-cycles", opt->cycles, "model: cycles per frequency (default 5; last 2 measured)")
@@ -35,14 +45,36 @@ const cushion::tools::Registrar reg{"compare", [](CLI::App& app) {
   sub->add_option("--steps-per-cycle", opt->steps, "model: time steps per cycle (default 40)")->check(CLI::Range(16, 1000));
   sub->callback([opt] {
     using namespace cushion::calibration;
-    const auto def = cushion::material::read_material_file(opt->material);
-    const Campaign campaign = read_campaign(opt->campaign);
+    const bool with_material = opt->files.size() == 2;
+    if (!with_material && opt->runs.empty())
+      throw CLI::ValidationError("compare", "give MATERIAL.json CAMPAIGN.json, or CAMPAIGN.json with --run RUN_DIR");
+    const Campaign campaign = read_campaign(opt->files.back());
     CompareOptions o;
     o.dynamic_cycles = opt->cycles;
     o.dynamic_steps_per_cycle = opt->steps;
-    CompareResult r = compare_campaign(*def.model, campaign, o);
-    for (const auto& w : specimen_warnings(def.spec.density, campaign)) r.warnings.insert(r.warnings.begin(), w);
-    const std::string label = opt->label.empty() ? def.spec.name : opt->label;
+    CompareResult r;
+    std::string label = opt->label;
+    if (with_material) {
+      const auto def = cushion::material::read_material_file(opt->files.front());
+      r = compare_campaign(*def.model, campaign, o);
+      for (const auto& w : specimen_warnings(def.spec.density, campaign)) r.warnings.insert(r.warnings.begin(), w);
+      if (label.empty()) label = def.spec.name;
+    } else {
+      if (!campaign.quasi_static.empty() || !campaign.dynamic.empty())
+        r.warnings.push_back("no material given: the " + std::to_string(campaign.quasi_static.size() + campaign.dynamic.size()) +
+                             " material-level tests are not compared");
+      if (label.empty()) label = std::filesystem::path(opt->runs.front()).filename().string();
+    }
+    for (const auto& w : coverage_warnings(campaign)) r.warnings.push_back(w);
+    const std::size_t structure_tests = campaign.indentation.size() + campaign.stiffness.size();
+    if (structure_tests > 0 && opt->runs.empty())
+      r.warnings.push_back("the campaign has " + std::to_string(structure_tests) +
+                           " structure-level tests: give --run RUN_DIR (the output folder of `cushion run`) to compare them");
+    else if (structure_tests == 0 && !opt->runs.empty())
+      r.warnings.push_back("--run given but the campaign has no structure-level test (kind indentation or dynamic_stiffness)");
+    std::vector<std::filesystem::path> runs(opt->runs.begin(), opt->runs.end());
+    if (!runs.empty())
+      for (auto& t : compare_structure(campaign, runs, r.warnings)) r.tests.push_back(std::move(t));
     const std::string gnuplot = cushion::tools::gnuplot_path();
     const auto drawn = write_compare_outputs(r, label, opt->out, gnuplot);
     std::cout << "cushion compare: " << label << " vs " << campaign.manifest.string() << " (" << r.tests.size()

@@ -39,6 +39,39 @@ std::string at_line(const std::string& source, const std::vector<int>& lines, st
 bool positive(double x) { return x > 0.0; }
 bool unit_interval(double x) { return x >= 0.0 && x < 1.0; }
 
+/// A structure-level test (compare_structure_data.hpp): keys checked, measurement read.
+void read_structure_test(const io::JsonNode& t, const std::string& kind, const std::filesystem::path& folder, Campaign& c) {
+  const std::filesystem::path file = folder / t.at("file").string();
+  const std::string name = t.find("name") ? t.at("name").string() : file.stem().string();
+  const double factor = t.find("model_force_factor") ? t.at("model_force_factor").number_where(positive, "> 0") : 1.0;
+  if (kind == "indentation") {
+    t.expect_object({"kind", "file", "name", "description", "contact", "history_set", "axis", "model_force_factor"});
+    IndentationTest q;
+    q.name = name;
+    q.file = file;
+    q.model_force_factor = factor;
+    if (t.has("contact") == t.has("history_set"))
+      t.fail("give exactly one model source: \"contact\" (contact_<name>.csv of the run) or \"history_set\" (history.csv)");
+    if (auto k = t.find("contact")) q.contact = k->string();
+    if (auto h = t.find("history_set")) q.history_set = h->string();
+    if (auto a = t.find("axis")) {
+      const std::string axis = a->choice({"x", "y", "z"});
+      q.axis = axis == "x" ? 0 : axis == "y" ? 1 : 2;
+    }
+    q.record = read_indentation_csv(file);
+    c.indentation.push_back(std::move(q));
+  } else {
+    t.expect_object({"kind", "file", "name", "description", "sweep_step", "model_force_factor"});
+    StiffnessTest d;
+    d.name = name;
+    d.file = file;
+    d.model_force_factor = factor;
+    d.sweep_step = t.at("sweep_step").string();
+    d.record = read_stiffness_csv(file);
+    c.stiffness.push_back(std::move(d));
+  }
+}
+
 }  // namespace
 
 StressStrainRecord read_quasi_static_csv(const std::filesystem::path& file, const Specimen& specimen) {
@@ -136,11 +169,16 @@ Campaign read_campaign(const std::filesystem::path& manifest) {
   std::optional<std::string> qs_cal, dyn_cal;  // key path of the explicit calibration test
   for (std::size_t i = 0; i < n; ++i) {
     const io::JsonNode t = tests[i];
-    const std::string kind = t.at("kind").choice({"quasi_static", "dynamic"});
+    const std::string kind = t.at("kind").choice({"quasi_static", "dynamic", "indentation", "dynamic_stiffness"});
+    if (kind == "indentation" || kind == "dynamic_stiffness") {
+      read_structure_test(t, kind, folder, c);
+      continue;
+    }
     if (kind == "quasi_static")
       t.expect_object({"kind", "file", "name", "use", "rate_mm_min", "lateral"});
     else
-      t.expect_object({"kind", "file", "name", "use", "preload_strain", "acceleration_amplitude_m_s2"});
+      t.expect_object({"kind", "file", "name", "use", "preload_strain", "acceleration_amplitude_m_s2", "amplitude_is",
+                       "preload_rate_mm_min"});
     std::optional<TestUse> use;
     if (auto u = t.find("use")) {
       use = u->choice({"calibration", "validation"}) == "calibration" ? TestUse::calibration : TestUse::validation;
@@ -180,6 +218,8 @@ Campaign read_campaign(const std::filesystem::path& manifest) {
       d.use = use;
       d.preload_strain = t.at("preload_strain").number_where(unit_interval, "in [0, 1)");
       d.acceleration_amplitude = t.at("acceleration_amplitude_m_s2").number_where(positive, "> 0") * 1e3;
+      if (auto a = t.find("amplitude_is")) d.amplitude_peak_to_peak = a->choice({"peak_to_peak", "peak"}) == "peak_to_peak";
+      if (auto r = t.find("preload_rate_mm_min")) d.preload_rate_mm_min = r->number_where(positive, "> 0");
       d.moduli = read_dynamic_csv(file, c.specimen);
       c.dynamic.push_back(std::move(d));
     }

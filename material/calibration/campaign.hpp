@@ -13,11 +13,16 @@
 /// File paths are relative to the manifest. Quasi-static CSV: time_s,displacement_mm,force_N
 /// (compression positive). Dynamic CSV: frequency_Hz plus one of {dynamic_modulus_kPa, phase_deg},
 /// {storage_modulus_kPa, loss_modulus_kPa}, {dynamic_stiffness_N_per_mm, phase_deg}
-/// (E = k thickness / area). Every problem is an InputError naming the file and line/column or key.
+/// (E = k thickness / area). Optional per dynamic test: "amplitude_is": "peak_to_peak" (default, the paper's
+/// words) | "peak" (how acceleration_amplitude_m_s2 is read), "preload_rate_mm_min" (> 0; default: the
+/// reader's, 30 mm/min in compare).
+/// Structure-level tests ("kind": "indentation" | "dynamic_stiffness", never used for calibration):
+/// compare_structure_data.hpp. Every problem is an InputError naming the file and line/column or key.
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "material/calibration/compare_structure_data.hpp"
 #include "material/calibration/hyperfoam_fit.hpp"
 #include "material/calibration/prony_fit.hpp"
 #include "material/calibration/segments.hpp"
@@ -41,6 +46,8 @@ struct DynamicTest {
   TestUse use = TestUse::validation;
   double preload_strain = 0.0;          ///< nominal preload [-] in [0, 1)
   double acceleration_amplitude = 0.0;  ///< excitation amplitude [mm/s^2] (file: m/s^2)
+  bool amplitude_peak_to_peak = true;   ///< acceleration_amplitude is peak-to-peak (file: amplitude_is)
+  double preload_rate_mm_min = 0.0;     ///< preload ramp speed [mm/min]; 0: not given (reader's default)
   DynamicModuli moduli;                 ///< E', E'' [MPa] vs frequency [Hz], increasing
 };
 
@@ -50,6 +57,8 @@ struct Campaign {
   Specimen specimen;
   std::vector<QuasiStaticTest> quasi_static;
   std::vector<DynamicTest> dynamic;
+  std::vector<IndentationTest> indentation;  ///< structure level: force vs indentation
+  std::vector<StiffnessTest> stiffness;      ///< structure level: dynamic stiffness vs frequency
   /// The (first) calibration test of each kind (nullptr when the campaign has none of that kind).
   const QuasiStaticTest* quasi_static_calibration() const;
   /// Every quasi-static test marked for calibration, in manifest order (the first is quasi_static_calibration()).

@@ -11,8 +11,9 @@
 /// Dynamic test: preload ramp at preload_rate_mm_min, then at each frequency `dynamic_cycles` sines of
 /// `dynamic_steps_per_cycle` steps, the last `dynamic_fit_cycles` sine-fitted (CHEAP schedule: the lab's
 /// 20 x 64 is ~4x dearer; the difference in the measured modulus is below the noise of typical data,
-/// see test_compare.cpp). Acceleration amplitude as written in the manifest, read as peak-to-peak (paper
-/// 2.3). Regions: low/mid/high thirds of the frequency list, each for |E*| [kPa] and phase [deg].
+/// see test_compare.cpp). Acceleration amplitude as written in the manifest, read as the test's
+/// amplitude_is (default peak-to-peak, paper 2.3), preload ramp at the test's preload_rate_mm_min (default
+/// CompareOptions::preload_rate_mm_min). Regions: low/mid/high thirds of the frequency list, each for |E*| [kPa] and phase [deg].
 ///
 /// Noise estimates (data only, never the model):
 ///   quasi-static: third differences d3 on each monotone branch (a local-polynomial high-pass: removes any
@@ -22,12 +23,15 @@
 ///     (cubic from 8 frequencies, quadratic from 5, else none), sigma = sqrt(SSR / (n - p)).
 /// NRMSE: quasi-static RMS / peak measured stress; |E*|: RMS / mean measured |E*|; phase: RMS / 90 deg.
 /// Units: internal mm, N, s, MPa; reported stresses/moduli in kPa, phases in degrees, strains nominal
-/// compression positive.
+/// compression positive. The error and noise helpers are shared with the structure level (compare_metrics.hpp).
+/// Structure-level tests (kinds "indentation" and "dynamic_stiffness", compare_structure.hpp) are reported
+/// as TestCompare too, in N, mm, N/mm and degrees.
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "material/calibration/campaign.hpp"
+#include "material/calibration/compare_metrics.hpp"
 #include "material/material.hpp"
 
 namespace cushion::calibration {
@@ -37,46 +41,37 @@ struct CompareOptions {
   int dynamic_cycles = 6;           ///< cycles run per frequency by the model
   int dynamic_fit_cycles = 3;       ///< last cycles sine-fitted
   int dynamic_steps_per_cycle = 48;
-  double preload_rate_mm_min = 30.0;  ///< dynamic preload ramp (paper 2.3)
+  double preload_rate_mm_min = 30.0;  ///< dynamic preload ramp (paper 2.3) of tests that give none
   double noise_level_ratio = 1.5;   ///< error/noise at or below this: "at the noise level"
-};
-
-/// Error of one region of one test. Physical unit: kPa (stress, |E*|, hysteresis area kJ/m^3 = kPa), deg.
-struct RegionError {
-  std::string region;        ///< e.g. "loading", "low_strain", "band_high_modulus", "hysteresis_area"
-  std::string unit;          ///< "kPa" or "deg"
-  double rms = 0.0;          ///< RMS(model - measured) [unit]; hysteresis_area: |model - measured|
-  double bias = 0.0;         ///< mean(model - measured) [unit]
-  double nrmse = 0.0;        ///< rms / scale [-] (see the file comment)
-  double noise = 0.0;        ///< estimated noise standard deviation [unit] (0: unknown)
-  std::size_t points = 0;
-  double ratio() const { return noise > 0.0 ? rms / noise : 0.0; }  ///< error in noise units [-]
 };
 
 /// Data-only noise estimates of one test.
 struct TestNoise {
-  double stress = 0.0;   ///< quasi-static: RMS stress noise over the record [MPa]
+  double stress = 0.0;   ///< quasi-static: RMS stress noise over the record [MPa]; indentation: force noise [N]
   std::vector<double> stress_local;  ///< quasi-static: local noise per record sample [MPa] (RMS of d3 over +-15 samples)
-  double modulus = 0.0;  ///< dynamic: |E*| noise [MPa]
+  double modulus = 0.0;  ///< dynamic: |E*| noise [MPa]; dynamic_stiffness: |K*| noise [N/mm]
   double phase = 0.0;    ///< dynamic: phase noise [deg]
   bool known = false;    ///< estimate available (enough samples)
 };
 
 struct TestCompare {
-  std::string name, kind, use;  ///< kind "quasi_static" | "dynamic"; use "calibration" | "validation"
+  std::string name, kind, use;  ///< kind "quasi_static" | "dynamic" | "indentation" | "dynamic_stiffness"; use "calibration" | "validation"
   double rate_mm_min = 0.0;     ///< quasi-static
   double preload = 0.0;         ///< dynamic: nominal preload [-]
   TestNoise noise;
   std::vector<RegionError> regions;  ///< "all" first
   /// Quasi-static curves: x = strain [-], measured/model stress [MPa] at the record's samples from the
-  /// start of loading; dynamic: x = frequency [Hz], measured/model |E*| [MPa] and phase [deg].
+  /// start of loading; dynamic: x = frequency [Hz], measured/model |E*| [MPa] and phase [deg];
+  /// indentation: x = indentation [mm], force [N]; dynamic_stiffness: x = frequency [Hz], |K*| [N/mm], phase [deg].
   std::vector<double> x, measured, model, measured_phase, model_phase;
-  std::vector<double> noise_local;    ///< quasi-static: local noise at each x [MPa]
-  std::size_t unload_begin = 0;       ///< quasi-static: index in x where unloading starts
-  double hysteresis_measured = 0.0, hysteresis_model = 0.0;  ///< loop area [MPa] (quasi-static)
+  std::vector<double> noise_local;    ///< quasi-static: local noise at each x [MPa] (indentation: [N])
+  std::size_t unload_begin = 0;       ///< quasi-static, indentation: index in x where unloading starts
+  double hysteresis_measured = 0.0, hysteresis_model = 0.0;  ///< loop area [MPa] (quasi-static), [N mm] (indentation)
   std::string failure;                ///< the model run failed (message); regions empty then
   /// RMS error over the whole test in noise units (dynamic: |E*| and phase combined) [-]; 0 if unknown.
   double noise_ratio() const;
+  /// A load/unload curve (quasi_static, indentation) rather than a spectrum (dynamic, dynamic_stiffness).
+  bool is_curve() const { return kind == "quasi_static" || kind == "indentation"; }
   const RegionError* region(const std::string& name) const;
 };
 
@@ -91,12 +86,6 @@ struct CompareResult {
 /// Data-only noise of every test (same order as CompareResult::tests).
 std::vector<TestNoise> estimate_noise(const Campaign& campaign);
 
-/// Robust third-difference noise of a smooth sampled signal: 1.4826 median|d3| / sqrt(20) (0 for < 8 samples).
-double third_difference_noise(const std::vector<double>& y);
-
-/// Residual standard deviation of y about a least-squares polynomial of `degree` in x: sqrt(SSR/(n - degree - 1)).
-double polynomial_scatter(const std::vector<double>& x, const std::vector<double>& y, int degree);
-
 /// Model vs every test. `noise`: from estimate_noise (computed when empty). A test whose model run throws
 /// is reported with `failure` set; the others are still compared.
 CompareResult compare_campaign(const material::Material& model, const Campaign& campaign, const CompareOptions& options = {},
@@ -105,6 +94,12 @@ CompareResult compare_campaign(const material::Material& model, const Campaign& 
 /// Warnings when the material and the campaign do not describe the same specimen (density of the material
 /// file vs the campaign's specimen, more than 5% apart), empty when they agree or the material gives none.
 std::vector<std::string> specimen_warnings(double material_density, const Campaign& campaign);
+
+/// What the campaign's tests cannot tell apart, in words (empty when it has several rates and preloads):
+/// a single material-level test; one quasi-static rate (rate-dependent hysteresis, viscous or pneumatic, vs
+/// rate-independent, friction or Mullins); one dynamic preload (preload-dependent moduli); one indentation
+/// test (the same for the structure's hysteresis).
+std::vector<std::string> coverage_warnings(const Campaign& campaign);
 
 /// Noise-normalised residuals for least squares (diagnose): quasi-static (model - measured)/sigma at up to
 /// `quasi_static_points` evenly spread samples per test; dynamic (|E*| error)/sigma_E and (phase error)/sigma_phase

@@ -12,7 +12,7 @@
 
 namespace cushion::calibration {
 
-/// Every figure of `result` as JSON (stresses and moduli in kPa, phases in degrees).
+/// Every figure of `result` as JSON (stresses and moduli in kPa, forces in N, stiffnesses in N/mm, phases in degrees).
 nlohmann::json compare_json(const CompareResult& result, const std::string& label);
 
 /// The per-test table (markdown): test, kind, use, NRMSE, RMS error and noise in physical units,

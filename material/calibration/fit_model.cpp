@@ -159,7 +159,8 @@ std::vector<double> strain_amplitudes(const DynamicTest& test, double thickness)
   std::vector<double> delta;
   for (double f : test.moduli.frequency) {
     const double w = 2.0 * std::numbers::pi * f;
-    delta.push_back(0.5 * test.acceleration_amplitude / (w * w) / thickness);
+    const double peak = test.amplitude_peak_to_peak ? 0.5 : 1.0;  // campaign key amplitude_is
+    delta.push_back(peak * test.acceleration_amplitude / (w * w) / thickness);
   }
   return delta;
 }

@@ -118,6 +118,7 @@ FitResult fit_pipeline(const Campaign& campaign, const FitOptions& options, std:
   if (!options.relaxed_preload) {
     schedule = options.dynamic_schedule;
     schedule->thickness = campaign.specimen.thickness;
+    if (dyn->preload_rate_mm_min > 0.0) schedule->preload_rate_mm_min = dyn->preload_rate_mm_min;  // campaign key
   }
   run_options.refit_options.schedule = schedule;
   const DynamicSchedule* sched = schedule ? &*schedule : nullptr;

@@ -1,5 +1,7 @@
 #include "material/calibration/hereditary_fit.hpp"
 
+#include "material/calibration/ceres_options.hpp"
+
 #include <ceres/ceres.h>
 
 #include <Eigen/Dense>
@@ -128,16 +130,7 @@ class ProjectedCost final : public ceres::CostFunction {
 };
 
 ceres::Solver::Options solver_options(const HereditaryFitOptions& o) {
-  ceres::Solver::Options so;
-  so.minimizer_type = ceres::TRUST_REGION;
-  so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-  so.linear_solver_type = ceres::DENSE_QR;
-  so.function_tolerance = o.function_tolerance;
-  so.gradient_tolerance = o.gradient_tolerance;
-  so.parameter_tolerance = o.parameter_tolerance;
-  so.max_num_iterations = o.max_iterations;
-  so.logging_type = ceres::SILENT;
-  return so;
+  return dense_fit_options({o.function_tolerance, o.gradient_tolerance, o.parameter_tolerance, o.max_iterations});
 }
 
 }  // namespace

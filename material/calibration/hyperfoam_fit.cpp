@@ -1,5 +1,7 @@
 #include "material/calibration/hyperfoam_fit.hpp"
 
+#include "material/calibration/ceres_options.hpp"
+
 #include <ceres/ceres.h>
 
 #include <Eigen/Dense>
@@ -128,14 +130,8 @@ HyperfoamFit fit_hyperfoam(const ElasticCurve& curve, const HyperfoamFitOptions&
     } else {
       problem.SetParameterBlockConstant(nu.data());
     }
-    ceres::Solver::Options so;
-    so.minimizer_type = ceres::TRUST_REGION;
-    so.linear_solver_type = ceres::DENSE_QR;
-    so.function_tolerance = o.function_tolerance;
-    so.gradient_tolerance = o.gradient_tolerance;
-    so.parameter_tolerance = o.parameter_tolerance;
-    so.max_num_iterations = o.max_iterations;
-    so.logging_type = ceres::SILENT;
+    const ceres::Solver::Options so =
+        dense_fit_options({o.function_tolerance, o.gradient_tolerance, o.parameter_tolerance, o.max_iterations});
     ceres::Solver::Summary summary;
     ceres::Solve(so, &problem, &summary);
     ++fit.starts;

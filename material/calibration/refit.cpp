@@ -1,5 +1,7 @@
 #include "material/calibration/refit.hpp"
 
+#include "material/calibration/ceres_options.hpp"
+
 #include <ceres/ceres.h>
 
 #include <Eigen/Dense>
@@ -324,16 +326,10 @@ RefitResult refit(const ViscoHyperfoam& start, const Specimen& specimen, const s
     candidates.resize(std::size_t(std::max(1, options.polished_starts)));
 
   // 2. Joint polish of the best starts (automatic derivatives), 3. the best stable one.
-  ceres::Solver::Options so;
-  so.minimizer_type = ceres::TRUST_REGION;
-  so.trust_region_strategy_type = ceres::DOGLEG;  // LM crawled along the (mu, a) valley (5x more iterations)
-  so.linear_solver_type = ceres::DENSE_QR;
-  so.max_num_iterations = options.max_iterations;
-  so.function_tolerance = options.function_tolerance;
-  so.gradient_tolerance = options.gradient_tolerance;
-  so.parameter_tolerance = options.parameter_tolerance;
-  so.logging_type = ceres::SILENT;
-  so.num_threads = 1;
+  // Dogleg: LM crawled along the (mu, a) valley (5x more iterations).
+  const ceres::Solver::Options so = dense_fit_options(
+      {options.function_tolerance, options.gradient_tolerance, options.parameter_tolerance, options.max_iterations},
+      ceres::DOGLEG);
   struct Polished {
     std::vector<double> x;
     double cost;

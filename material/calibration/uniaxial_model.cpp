@@ -2,18 +2,9 @@
 
 #include <stdexcept>
 
-namespace cushion::calibration {
+#include "material/viscoelastic.hpp"
 
-void prony_recursion(double dt, double tau, double& decay, double& weight) {
-  // Same factors as material/viscoelastic.cpp (expm1 form; both 1 at x = 0, the instantaneous jump).
-  const double x = dt / tau;
-  if (x == 0.0) {
-    decay = weight = 1.0;
-    return;
-  }
-  decay = std::exp(-x);
-  weight = -std::expm1(-x) / x;
-}
+namespace cushion::calibration {
 
 UniaxialPath make_uniaxial_path(const std::vector<double>& time, const std::vector<double>& strain,
                                 const std::vector<double>& tau) {
@@ -27,10 +18,9 @@ UniaxialPath make_uniaxial_path(const std::vector<double>& time, const std::vect
     const double dt = time[n] - time[n - 1];
     if (!(dt > 0.0)) throw std::invalid_argument("make_uniaxial_path: time must be strictly increasing");
     for (double t : tau) {
-      double decay = 0.0, weight = 0.0;
-      prony_recursion(dt, t, decay, weight);
-      p.decay.push_back(decay);
-      p.weight.push_back(weight);
+      const material::PronyRecursion q = material::prony_recursion(dt, t);  // the solver's recursion
+      p.decay.push_back(q.decay);
+      p.weight.push_back(q.weight);
     }
   }
   return p;

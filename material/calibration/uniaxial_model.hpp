@@ -66,10 +66,6 @@ struct UniaxialPath {
 UniaxialPath make_uniaxial_path(const std::vector<double>& time, const std::vector<double>& strain,
                                 const std::vector<double>& tau);
 
-/// Decay and weight of the exact recursion for S_inf linear over an increment dt [s] (tau [s]): e^{-x},
-/// (1 - e^{-x})/x with x = dt/tau (both 1 at dt = 0).
-void prony_recursion(double dt, double tau, double& decay, double& weight);
-
 /// H_k at every sample (row n, column k; row-major n x modes) for the long-term stress S_inf at the samples.
 template <typename T>
 void viscous_states(const UniaxialPath& p, const T* S_inf, T* H) {

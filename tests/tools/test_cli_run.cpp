@@ -19,13 +19,7 @@ using cli_test::CommandRun;
 using cli_test::quoted;
 using cli_test::run_cushion;
 
-fs::path scratch_dir() {
-  const fs::path dir = fs::temp_directory_path() /
-                       ("cushion_test_cli_run_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path scratch_dir() { return cli_test::scratch_dir("cushion_test_cli_run_"); }
 
 std::size_t count(const std::string& text, const std::string& what) {
   std::size_t n = 0;
