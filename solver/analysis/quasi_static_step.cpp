@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 
 #include "solver/analysis/boundary.hpp"
 #include "solver/analysis/increment_control.hpp"
@@ -38,15 +39,27 @@ class TimedProblem final : public NonlinearProblem {
 };
 
 /// Predictor then Newton for one attempt; x: free displacements (in: start, out: last iterate).
+/// In the predictor the contacts extrapolate from the last converged indenter position.
 NewtonResult solve_increment(EquilibriumProblem& problem, LinearSolver& linear, Eigen::VectorXd& x,
-                             NewtonOptions options, double prescribed_increment, AnalysisContext& ctx) {
+                             NewtonOptions options, double prescribed_increment, AnalysisContext& ctx,
+                             const std::vector<std::shared_ptr<ResidualContributor>>& contributors) {
   NewtonResult result;
   const Eigen::VectorXd x_start = x;
+  auto predicting = [&](bool on) {
+    for (const auto& c : contributors)
+      if (auto* contact = dynamic_cast<ContactContributor*>(c.get())) contact->set_predicting(on);
+  };
+  struct PredictorScope {
+    std::function<void(bool)> set;
+    ~PredictorScope() { set(false); }
+  } scope{predicting};
+  predicting(true);
   try {
     // Predictor: its element loop counts as assembly, its factorization as factorization.
     const double linear_before = ctx.stats.factorization_time + ctx.stats.solve_time;
     double total = 0.0;
     const ProblemEvaluation ev = timed(total, [&] { return problem.predict(x, linear); });
+    predicting(false);
     ++ctx.stats.assemblies;
     ctx.stats.assembly_time += total - (ctx.stats.factorization_time + ctx.stats.solve_time - linear_before);
     if (ev.status == material::Status::failed) {
@@ -126,7 +139,7 @@ void QuasiStaticStep::run(AnalysisContext& ctx) {
     ctx.log << "  increment " << control.increments() + 1 << ": t = " << t0 + t_end << " s, dt = " << dt << " s\n";
     options.reference_force = control.increments() ? q_sum / control.increments() : 0.0;
     Eigen::VectorXd x = dofs.gather_free(ctx.u);
-    last = solve_increment(problem, *system.linear, x, options, prescribed, ctx);
+    last = solve_increment(problem, *system.linear, x, options, prescribed, ctx, contributors);
     // Augmented-Lagrangian (Uzawa) updates of the contributors: solve again until none changes.
     for (bool again = true; last.converged() && again;) {
       again = false;

@@ -385,6 +385,11 @@ ContactSpec parse_contact(const Obj& o, const CaseSpec& spec, const StepSpec& st
   if (o.has("friction")) p.friction = o.number("friction");
   if (p.friction < 0.0) o.fail("friction", "must be >= 0");
   p.tolerance = o.positive_or("tolerance_mm", p.tolerance);
+  if (o.has("smoothing_mm")) {
+    p.smoothing = o.number("smoothing_mm");
+    if (!(p.smoothing >= 0.0) || !(p.smoothing <= 10.0 * p.tolerance))
+      o.fail("smoothing_mm", "must be >= 0 and at most 10 x tolerance_mm [mm]");
+  }
   if (o.has("max_augmentations")) p.max_augmentations = static_cast<int>(o.integer("max_augmentations", 0));
   c.force_factor = o.positive_or("force_factor", 1.0);
   return c;
@@ -431,7 +436,7 @@ StepSpec parse_step(const Obj& o, const CaseSpec& spec) {
       step.contact.push_back(parse_contact(
           Obj(o.raw("contact")[i], o.ctx(), o.path("contact") + "[" + std::to_string(i) + "]",
               {"name", "set", "indenter", "motion_mm", "amplitude", "penalty_MPa_per_mm",
-               "tangential_penalty_MPa_per_mm", "friction", "tolerance_mm", "max_augmentations", "force_factor"}),
+               "tangential_penalty_MPa_per_mm", "friction", "tolerance_mm", "smoothing_mm", "max_augmentations", "force_factor"}),
           spec, step));
   }
   if (o.has("output")) {

@@ -100,7 +100,12 @@ void ContactContributor::begin_increment(const IncrementInfo& increment, Equilib
   t_end_ = increment.t_end;
   set_.set_position(motion_at(increment.t_end));
   set_.begin_attempt();
-  problem.add_term([this](const Eigen::VectorXd& u, Eigen::VectorXd& r, SparseMatrix* K) { set_.evaluate(u, *dofs_, r, K); });
+  problem.add_term([this](const Eigen::VectorXd& u, Eigen::VectorXd& r, SparseMatrix* K) {
+    if (predicting_)
+      set_.evaluate_predictor(committed_position_, u, *dofs_, r, K);
+    else
+      set_.evaluate(u, *dofs_, r, K);
+  });
 }
 
 bool ContactContributor::update_after_solve(std::string& failure) {

@@ -32,6 +32,9 @@ class ContactContributor final : public ResidualContributor {
   void commit() override;
   void revert() override;
   void add_frame_fields(FrameData& frame) const override;
+  /// While true, the contact term is the linear extrapolation from the last converged indenter
+  /// position (ContactSet::evaluate_predictor): set by the step driver around its predictor.
+  void set_predicting(bool on) { predicting_ = on; }
   bool needs_unsymmetric_solver() const { return set_.parameters().friction > 0.0; }
 
   const ContactSet& set() const { return set_; }
@@ -50,6 +53,7 @@ class ContactContributor final : public ResidualContributor {
   double t_start_ = 0.0;
   Vec3 start_position_ = Vec3::Zero(), committed_position_ = Vec3::Zero();
   double t_end_ = 0.0;
+  bool predicting_ = false;
   bool checked_start_ = false, had_contact_ = false, contact_in_step_ = false;
 };
 

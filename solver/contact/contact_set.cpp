@@ -19,6 +19,14 @@ std::string fmt(const char* f, double a) {
   return s;
 }
 
+/// The C1 ramp p(x) of width w [N] and its slope (contact_set.hpp).
+std::pair<double, double> smooth_ramp(double x, double w) {
+  if (x >= 0.5 * w) return {x, 1.0};
+  if (x <= -0.5 * w) return {0.0, 0.0};
+  const double y = x + 0.5 * w;
+  return {y * y / (2.0 * w), y / w};
+}
+
 }  // namespace
 
 std::vector<double> tributary_areas(const mesh::Mesh& mesh, const std::vector<int>& nodes) {
@@ -47,6 +55,7 @@ ContactSet::ContactSet(std::string name, const mesh::Mesh& mesh, std::vector<int
   if (p_.tangential_penalty <= 0.0) p_.tangential_penalty = 0.1 * p_.penalty;
   if (p_.friction < 0.0) throw InputError(where + ": friction coefficient must be >= 0");
   if (!(p_.tolerance > 0.0)) throw InputError(where + ": penetration tolerance must be > 0 mm");
+  if (p_.smoothing < 0.0) p_.smoothing = 0.5 * p_.tolerance;
   area_ = tributary_areas(mesh_, nodes_);
   int off_surface = 0, first = -1;
   for (std::size_t k = 0; k < nodes_.size(); ++k)
@@ -67,14 +76,24 @@ ContactSet::ContactSet(std::string name, const mesh::Mesh& mesh, std::vector<int
 }
 
 void ContactSet::evaluate(const Eigen::VectorXd& u, const DofMap& dofs, Eigen::VectorXd& r_full, SparseMatrix* K) {
+  evaluate_at(position_, Vec3::Zero(), u, dofs, r_full, K);
+}
+
+void ContactSet::evaluate_predictor(const Vec3& from, const Eigen::VectorXd& u, const DofMap& dofs,
+                                    Eigen::VectorXd& r_full, SparseMatrix* K) {
+  evaluate_at(from, position_ - from, u, dofs, r_full, K);
+}
+
+void ContactSet::evaluate_at(const Vec3& c, const Vec3& dc, const Eigen::VectorXd& u, const DofMap& dofs,
+                             Eigen::VectorXd& r_full, SparseMatrix* K) {
   switches_ = 0;
   const double mu = p_.friction;
   for (std::size_t k = 0; k < nodes_.size(); ++k) {
     const int a = nodes_[k];
-    const Vec3 y = mesh_.nodes[a] + u.segment<3>(3 * a) - position_;  // indenter frame [mm]
+    const Vec3 y = mesh_.nodes[a] + u.segment<3>(3 * a) - c;  // indenter frame [mm]
     const GapPoint gp = surface_->gap(y);
     const double eps = p_.penalty * area_[k];
-    const double t_N = lambda_trial_[k] - eps * gp.g;
+    const auto [t_N, dt_N] = smooth_ramp(lambda_trial_[k] - eps * gp.g, eps * p_.smoothing);
     const ContactStatus old_status = status_[k];
     Vec3 F = Vec3::Zero();        // force on the node [N]
     Mat3 dF = Mat3::Zero();       // dF/dx [N/mm]
@@ -83,7 +102,7 @@ void ContactSet::evaluate(const Eigen::VectorXd& u, const DofMap& dofs, Eigen::V
     if (t_N > 0.0) {
       t_N_[k] = t_N;
       F = t_N * gp.grad;
-      dF = -eps * gp.grad * gp.grad.transpose() + t_N * gp.hess;
+      dF = -eps * dt_N * gp.grad * gp.grad.transpose() + t_N * gp.hess;
       status_[k] = ContactStatus::stick;
       touching_trial_[k] = 1;
       xi_trial_[k] = y;
@@ -105,7 +124,7 @@ void ContactSet::evaluate(const Eigen::VectorXd& u, const DofMap& dofs, Eigen::V
           const Vec3 e = s / s_norm;
           const Vec3 F_T = -mu * t_N * e;
           F += F_T;
-          dF += mu * eps * e * gp.grad.transpose() - mu * t_N * (Mat3::Identity() - e * e.transpose()) * ds / s_norm;
+          dF += mu * eps * dt_N * e * gp.grad.transpose() - mu * t_N * (Mat3::Identity() - e * e.transpose()) * ds / s_norm;
           xi_trial_[k] = y + F_T / eps_T;
           status_[k] = ContactStatus::slip;
         }
@@ -116,6 +135,7 @@ void ContactSet::evaluate(const Eigen::VectorXd& u, const DofMap& dofs, Eigen::V
       touching_trial_[k] = 0;
     }
     if ((old_status == ContactStatus::open) != (status_[k] == ContactStatus::open)) ++switches_;
+    F -= dF * dc;  // F(x, c + dc) to first order: dF/dc = -dF/dx (F depends on x - c only)
     force_[k] = F;
     for (int i = 0; i < 3; ++i) r_full(3 * a + i) -= F(i);
     if (!K) continue;

@@ -2,19 +2,23 @@
 /// Node-to-rigid-surface contact of a set of foam surface nodes against one moving rigid indenter.
 ///
 /// Normal (augmented Lagrangian, Uzawa): per node a the contact force magnitude is
-///   t_N = < lambda_a - eps_a g_a >   [N],  eps_a = penalty [MPa/mm] x A_a (tributary area [mm^2]),
-/// g_a = g(x_a - c(t)) the signed gap [mm], and the force on the node is t_N grad g. This is the
-/// gradient of W = < lambda - eps g >^2 / (2 eps), so the tangent eps grad g grad g^T - t_N H is the
-/// exact derivative (symmetric). After each converged Newton solve augment() sets lambda = t_N
-/// until the largest penetration is within `tolerance` (Uzawa loop around Newton).
+///   t_N = p(lambda_a - eps_a g_a)   [N],  eps_a = penalty [MPa/mm] x A_a (tributary area [mm^2]),
+/// g_a = g(x_a - c(t)) the signed gap [mm], and the force on the node is t_N grad g. p is the ramp
+/// <x> made C1 over a force width w = eps_a delta (delta = smoothing [mm]):
+///   p(x) = 0 (x <= -w/2),  (x + w/2)^2 / (2 w) (|x| < w/2),  x (x >= w/2),
+/// so a node carrying more than w/2 sees the exact augmented-Lagrangian law (the Uzawa fixed point
+/// is g = 0, the flat-platen patch test stays exact) while the tangent is continuous across
+/// contact opening/closing: no active-set cycling of semi-smooth Newton. The force is the gradient
+/// of a potential, so the tangent eps p'(x) grad g grad g^T - t_N H is exact and symmetric. After
+/// each converged Newton solve augment() sets lambda = t_N until the largest penetration is within
+/// `tolerance` (Uzawa loop around Newton).
 /// Tangential (Coulomb, regularised): each contacting node has a stick point xi in the indenter
 /// frame; trial force f_T = -eps_T P (x - c - xi), P = I - n n^T, n = grad g / |grad g|; if
 /// |f_T| > mu t_N the node slips: f_T = mu t_N f_T / |f_T| and xi follows. The stick points are
 /// the slip history, committed with the step state. Newly touching nodes start stuck at their
 /// current point. The frictional tangent is unsymmetric (use an LU solver when mu > 0).
-/// The active set is the sign of lambda - eps g at the current iterate (semi-smooth Newton): the
-/// residual is continuous and the line search keeps the iteration from cycling; switches per
-/// evaluation are counted (status()).
+/// The active set (t_N > 0) follows the current iterate; switches per evaluation are counted
+/// (last_switches()).
 #include <memory>
 #include <string>
 #include <vector>
@@ -32,6 +36,7 @@ struct ContactParameters {
   double tangential_penalty = 0.0;  ///< tangential penalty per unit area [MPa/mm]; 0: 0.1 x penalty
   double friction = 0.0;            ///< Coulomb coefficient mu [-] (0: frictionless)
   double tolerance = 0.1;           ///< largest penetration accepted after augmentation [mm]
+  double smoothing = -1.0;          ///< width delta of the C1 contact law [mm]; < 0: tolerance / 2
   int max_augmentations = 10;       ///< Uzawa updates per increment before giving up
 };
 
@@ -73,6 +78,13 @@ class ContactSet {
   /// Adds the contact residual (minus the contact forces) to r_full [N] and, if K, the tangent on
   /// the free DOFs of `dofs` [N/mm] at full displacements u [mm]; stores the trial state.
   void evaluate(const Eigen::VectorXd& u, const DofMap& dofs, Eigen::VectorXd& r_full, SparseMatrix* K);
+  /// The same at the indenter position `from` [mm] (the converged one of the previous increment),
+  /// extrapolated linearly to position(): force F(x, from) - dF/dx (position() - from), tangent
+  /// dF/dx at `from`. The increment predictor uses it so the contact nodes follow the indenter
+  /// with the forces and curvature of a converged state, instead of seeing the full penetration
+  /// of the new position at once (which inverts elements under steep indenter flanks).
+  void evaluate_predictor(const Vec3& from, const Eigen::VectorXd& u, const DofMap& dofs, Eigen::VectorXd& r_full,
+                          SparseMatrix* K);
 
   /// Checks the state of the last evaluation (a converged Newton solve): if the largest
   /// penetration exceeds the tolerance, lambda = t_N (another solve needed). Counts the updates
@@ -101,10 +113,18 @@ class ContactSet {
   const std::vector<double>& areas() const { return area_; }  ///< tributary areas [mm^2]
   const RigidSurface& surface() const { return *surface_; }
   const ContactParameters& parameters() const { return p_; }
+  /// Per-set-node values of the last evaluation (index k as in nodes()), read by the
+  /// steady-state linearisation: normal force magnitudes t_N [N] (> 0: closed) and gaps g [mm].
+  const std::vector<double>& normal_force_magnitudes() const { return t_N_; }
+  const std::vector<double>& gaps() const { return gap_; }
   /// Active-set changes between the last two evaluations (for the log).
   int last_switches() const { return switches_; }
 
  private:
+  /// evaluate() at indenter position c, extrapolated by dc [mm] (see evaluate_predictor).
+  void evaluate_at(const Vec3& c, const Vec3& dc, const Eigen::VectorXd& u, const DofMap& dofs,
+                   Eigen::VectorXd& r_full, SparseMatrix* K);
+
   std::string name_;
   const mesh::Mesh& mesh_;
   std::vector<int> nodes_;

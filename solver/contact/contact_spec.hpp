@@ -5,7 +5,8 @@
 ///                "indenter": {"type": "sitbar", ...} (see IndenterSpec),
 ///                "motion_mm": [0, 0, -60], "amplitude"?: "name",
 ///                "penalty_MPa_per_mm"? = 1, "tangential_penalty_MPa_per_mm"? = 0.1 x penalty,
-///                "friction"? = 0, "tolerance_mm"? = 0.1, "max_augmentations"? = 10,
+///                "friction"? = 0, "tolerance_mm"? = 0.1, "smoothing_mm"? = tolerance / 2 (width of
+///                the C1-rounded contact law, 0: plain penalty), "max_augmentations"? = 10,
 ///                "force_factor"? = 1}]
 /// motion_mm: translation of the indenter at the end of the step relative to where the case file
 /// places it [mm]; without amplitude it ramps linearly from its value at the end of the previous
@@ -29,7 +30,7 @@ namespace cushion::solver {
 ///  {"type": "cylinder", "point_mm": [x,y,z], "axis": [ax,ay,az], "radius_mm": R}
 ///  {"type": "flat_punch", "centre_mm": [x,y], "bottom_z_mm": z, "radius_mm"? = 100, "edge_radius_mm"? = 1}
 ///  {"type": "sitbar", "lowest_z_mm"? = 80, "spacing_mm"? = 120, "a_mm"? = 100, "b_mm"? = 130,
-///   "c_mm"? = 60, "blend_mm"? = 15, "plate_x_mm"? = 360, "plate_y_mm"? = 300, "plate_edge_mm"? = 10,
+///   "c_mm"? = 120, "blend_mm"? = 20, "plate_x_mm"? = 360, "plate_y_mm"? = 300, "plate_edge_mm"? = 10,
 ///   "centre_mm"? = [0, 0]}
 ///  {"type": "stl", "file": "indenter.stl"}                              closed, outward normals
 struct IndenterSpec {
