@@ -2,6 +2,8 @@
 // friction with stick points, exact linearisation (see contact_set.hpp for the equations).
 #include "solver/contact/contact_set.hpp"
 
+#include <sstream>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -60,12 +62,17 @@ ContactSet::ContactSet(std::string name, const mesh::Mesh& mesh, std::vector<int
   int off_surface = 0, first = -1;
   for (std::size_t k = 0; k < nodes_.size(); ++k)
     if (!(area_[k] > 0.0)) ++off_surface, first = first < 0 ? nodes_[k] : first;
-  if (off_surface)
+  if (off_surface) {
+    double z_top = -INFINITY;  // the hint names this mesh's top face
+    for (const Vec3& X : mesh_.nodes) z_top = std::max(z_top, X.z());
+    std::ostringstream top;
+    top << z_top;
     throw InputError(where + ": " + std::to_string(off_surface) + " of " + std::to_string(nodes_.size()) +
                      " contact nodes are not on the outer surface of the mesh, or on no exterior face whose nodes all "
                      "belong to the set (first: node " +
                      std::to_string(mesh_.node_labels.empty() ? first + 1 : mesh_.node_labels[first]) +
-                     "); select surface nodes only, e.g. \"z == 80\"");
+                     "); select surface nodes only, e.g. the top face \"z == " + top.str() + "\"");
+  }
   const std::size_t n = nodes_.size();
   lambda_.assign(n, 0.0), lambda_trial_ = lambda_;
   xi_.assign(n, Vec3::Zero()), xi_trial_ = xi_;

@@ -1,6 +1,7 @@
 #pragma once
 /// Helpers for the analysis-driver tests: scratch folders, material and case files written on the
 /// fly, running a case through load_case + run_analysis, and reading the history back.
+#include <unistd.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -18,7 +19,7 @@ namespace fs = std::filesystem;
 inline fs::path scratch_dir(const std::string& tag = "") {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   const fs::path dir = fs::temp_directory_path() /
-                       ("cushion_h7_" + std::string(info->test_suite_name()) + "_" + info->name() + tag);
+                       ("cushion_h7_" + std::to_string(::getpid()) + "_" + info->test_suite_name() + "_" + info->name() + tag);
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
