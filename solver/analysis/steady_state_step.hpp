@@ -9,8 +9,11 @@
 /// ("base_stress": "as_left"); the Prony series gives the complex material tangent C*(w) about it.
 /// Excitation: harmonic displacement of one component of a set, the "held" components at zero, all
 /// else free; displacements are absolute (alpha M damps absolute velocities).
-/// Contact: NOT linearised yet. A sweep needs the indenter modelled as prescribed displacements of
-/// the nodes under it (held in the sweep); a case whose base step uses contact is rejected.
+/// Contact: the contacts of the previous static/visco step are frozen at the base state
+/// (solver/dynamics/contact_linearisation.hpp: closed nodes keep a normal penalty spring; tangentially
+/// free sliding, or sticking with friction); each indenter gets one translation DOF along the
+/// excitation's component, held (base shaken), driven (indenter shaken) or free with a mass
+/// (transmissibility). An indenter named by the sweep without a closed node is an InputError.
 /// Outputs in the run folder: <step>_sweep.csv (one row per frequency, written at the end of the
 /// sweep in one piece) and, if output.vtk, <step>_sweep.pvd + <step>_sweep_NNNN.vtu (time = frequency
 /// [Hz]); one progress line per frequency. Frequencies are solved on up to 2 threads.
@@ -22,8 +25,8 @@ class SteadyStateStep final : public Step {
  public:
   explicit SteadyStateStep(const StepSpec& spec) : spec_(spec) {}
   const StepSpec& spec() const override { return spec_; }
-  /// Throws InputError for a material without density, a missing/empty set or contact in the base
-  /// step (before anything is written); AnalysisError if the base state cannot be linearised or a
+  /// Throws InputError for a material without density, a missing/empty set, an unknown contact or
+  /// a named indenter without contact at the base state (before anything is written); AnalysisError if the base state cannot be linearised or a
   /// frequency hits an undamped resonance (no sweep file is then written).
   void run(AnalysisContext& ctx) override;
 

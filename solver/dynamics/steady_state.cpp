@@ -1,6 +1,10 @@
 #include "solver/dynamics/steady_state.hpp"
 
+#include <chrono>
 #include <stdexcept>
+
+#include <Eigen/CholmodSupport>
+#include <unsupported/Eigen/IterativeSolvers>
 
 namespace cushion::solver::dynamics {
 namespace {
@@ -24,11 +28,52 @@ SparseMatrix selection(const std::vector<int>& dofs, std::size_t n) {
   return P;
 }
 
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// Eigen preconditioner applying a real Cholesky factor to the real and imaginary parts.
+class RealFactorPreconditioner {
+ public:
+  using Factor = Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>;
+  template <class M>
+  RealFactorPreconditioner& analyzePattern(const M&) { return *this; }
+  template <class M>
+  RealFactorPreconditioner& factorize(const M&) { return *this; }
+  template <class M>
+  RealFactorPreconditioner& compute(const M&) { return *this; }
+  Eigen::ComputationInfo info() const { return Eigen::Success; }
+  void set(const Factor* f) { f_ = f; }
+  template <class V>
+  Eigen::VectorXcd solve(const Eigen::MatrixBase<V>& b) const {
+    Eigen::MatrixXd B(b.rows(), 2);
+    B.col(0) = b.real();
+    B.col(1) = b.imag();
+    const Eigen::MatrixXd X = f_->solve(B);
+    Eigen::VectorXcd x(b.rows());
+    x.real() = X.col(0);
+    x.imag() = X.col(1);
+    return x;
+  }
+
+ private:
+  const Factor* f_ = nullptr;
+};
+
 }  // namespace
 
+struct SteadyStateSolver::Preconditioner {
+  RealFactorPreconditioner::Factor factor;
+  bool valid = false;
+  Preconditioner() { factor.cholmod().print = 0; }
+};
+
+SteadyStateSolver::~SteadyStateSolver() = default;
+
 SteadyStateSolver::SteadyStateSolver(HarmonicModel model, Damping damping, Excitation excitation,
-                                     std::vector<DofGroup> groups)
-    : model_(std::move(model)), damping_(damping), groups_(std::move(groups)) {
+                                     std::vector<DofGroup> groups, SolveMethod method)
+    : model_(std::move(model)), damping_(damping), groups_(std::move(groups)), method_(method),
+      precond_(std::make_unique<Preconditioner>()) {
   if (!model_.system) throw std::invalid_argument("steady-state: no linearised system");
   const auto missing = model_.system->sections_without_density();
   if (!missing.empty())
@@ -89,14 +134,25 @@ ComplexMatrix SteadyStateSolver::dynamic_matrix(double omega) const {
 FrequencyResponse SteadyStateSolver::solve(double frequency, cplx amplitude) {
   if (!(frequency > 0.0)) throw std::invalid_argument("steady-state: frequencies must be > 0 Hz");
   const double omega = 2.0 * M_PI * frequency;
+  auto t0 = std::chrono::steady_clock::now();
   const ComplexMatrix D = dynamic_matrix(omega);
   const ComplexMatrix Pf = Pf_.cast<cplx>(), Pc = Pc_.cast<cplx>();
   ComplexMatrix Dff = Pf * D * ComplexMatrix(Pf.transpose());
   Dff.makeCompressed();
   const ComplexMatrix Dfc = Pf * D * ComplexMatrix(Pc.transpose());
   const Eigen::VectorXcd uc = amplitude * unit_c_;
-  lu_.factorize(Dff);
-  const Eigen::VectorXcd uf = lu_.solve(-(Dfc * uc));
+  const Eigen::VectorXcd b = -(Dfc * uc);
+  stats_.assembly_time += seconds_since(t0);
+  Eigen::VectorXcd uf;
+  if (!method_.iterative || !solve_iterative(Dff, b, uf)) {
+    t0 = std::chrono::steady_clock::now();
+    lu_.factorize(Dff);
+    ++stats_.complex_factorisations;
+    stats_.factorisation_time += seconds_since(t0);
+    t0 = std::chrono::steady_clock::now();
+    uf = lu_.solve(b);
+    stats_.solve_time += seconds_since(t0);
+  }
 
   FrequencyResponse r;
   r.frequency = frequency;
@@ -117,6 +173,43 @@ FrequencyResponse SteadyStateSolver::solve(double frequency, cplx amplitude) {
     r.displacement.push_back(g.dofs.empty() ? cplx(0.0) : U / static_cast<double>(g.dofs.size()));
   }
   return r;
+}
+
+bool SteadyStateSolver::solve_iterative(const ComplexMatrix& Dff, const Eigen::VectorXcd& b, Eigen::VectorXcd& x) {
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    if (!precond_->valid || attempt == 1) {  // P = Re D_ff at this frequency
+      const auto t0 = std::chrono::steady_clock::now();
+      const SparseMatrix P = Dff.real();
+      precond_->factor.compute(P);
+      ++stats_.real_factorisations;
+      stats_.factorisation_time += seconds_since(t0);
+      precond_->valid = precond_->factor.info() == Eigen::Success;
+      if (!precond_->valid) return false;  // not positive definite (above a resonance): LU
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    Eigen::GMRES<ComplexMatrix, RealFactorPreconditioner> gmres;
+    gmres.set_restart(method_.max_iterations);
+    gmres.setMaxIterations(method_.max_iterations);
+    gmres.preconditioner().set(&precond_->factor);
+    gmres.compute(Dff);
+    // Eigen's GMRES stops on the preconditioned residual: passes from the last x with the tolerance
+    // tightened until the TRUE relative residual |b - D x| / |b| meets method_.tolerance.
+    x = Eigen::VectorXcd::Zero(b.size());
+    double tol = method_.tolerance;
+    bool ok = false;
+    for (int pass = 0; pass < 4 && !ok; ++pass) {
+      gmres.setTolerance(tol);
+      x = gmres.solveWithGuess(b, x);
+      stats_.iterations += static_cast<int>(gmres.iterations());
+      if (gmres.info() != Eigen::Success || !x.allFinite()) break;
+      const double residual = (b - Dff * x).norm() / b.norm();
+      ok = residual <= method_.tolerance;
+      tol = std::max(0.5 * tol * method_.tolerance / residual, 1e-15);
+    }
+    stats_.solve_time += seconds_since(t0);
+    if (ok) return true;
+  }
+  return false;
 }
 
 }  // namespace cushion::solver::dynamics

@@ -53,15 +53,22 @@ SteadyStateSpec parse_steady_state_spec(const nlohmann::json& value, const std::
   const JsonNode o(value, source, path);
   if (first_step)
     o.fail("a steady_state step needs a preceding static or visco step (its end state is the base state)");
-  o.expect_object({"frequencies", "frequencies_Hz", "excitation", "held", "measure", "damping", "base_stress",
-                   "area_mm2", "thickness_mm", "output"});
+  o.expect_object({"frequencies", "frequencies_Hz", "excitation", "held", "indenters", "measure", "damping",
+                   "base_stress", "area_mm2", "thickness_mm", "output", "linear_solver", "gmres_tolerance"});
   SteadyStateSpec s;
   s.key = path;
   s.frequencies = parse_frequencies(o);
 
   const JsonNode x = o.at("excitation");
-  x.expect_object({"set", "dof", "acceleration_amplitude_m_s2", "amplitude_is", "displacement_amplitude_mm"});
-  s.excitation = parse_set_dofs(x, {"x", "y", "z"}, set_exists);
+  x.expect_object({"set", "contact", "dof", "acceleration_amplitude_m_s2", "amplitude_is", "displacement_amplitude_mm"});
+  if (x.has("set") == x.has("contact")) x.fail("give exactly one of \"set\" (a node set) or \"contact\" (an indenter)");
+  if (x.has("set")) {
+    s.excitation = parse_set_dofs(x, {"x", "y", "z"}, set_exists);
+  } else {
+    s.excitation.key = x.path();
+    s.excitation_contact = x.at("contact").string();
+    for (char c : x.at("dof").choice({"x", "y", "z"})) s.excitation.dofs[c - 'x'] = true;
+  }
   if (x.has("acceleration_amplitude_m_s2") == x.has("displacement_amplitude_mm"))
     x.fail("give exactly one of \"acceleration_amplitude_m_s2\" or \"displacement_amplitude_mm\"");
   if (x.has("acceleration_amplitude_m_s2")) {
@@ -81,14 +88,39 @@ SteadyStateSpec parse_steady_state_spec(const nlohmann::json& value, const std::
       s.held.push_back(parse_set_dofs(list[i], {"x", "y", "z", "xy", "xz", "yz", "xyz"}, set_exists));
     }
   }
-  s.measure = o.at("measure").string();
-  if (!set_exists(s.measure)) o.at("measure").fail("unknown set \"" + s.measure + "\" (define it under \"sets\")");
+  if (o.has("indenters")) {
+    const JsonNode list = o.at("indenters");
+    const std::size_t n = list.expect_array(0, 100);
+    for (std::size_t i = 0; i < n; ++i) {
+      const JsonNode e = list[i];
+      e.expect_object({"contact", "motion", "mass_kg"});
+      IndenterMotion m;
+      m.key = e.path();
+      m.contact = e.at("contact").string();
+      if (m.contact == s.excitation_contact) e.at("contact").fail("is the excited indenter (it cannot also be held or free)");
+      for (const IndenterMotion& other : s.indenters)
+        if (other.contact == m.contact) e.at("contact").fail("listed twice");
+      m.free = e.at("motion").choice({"held", "free"}) == "free";
+      if (m.free) m.mass = 1e-3 * e.at("mass_kg").number_where(positive, "> 0 kg (a free indenter needs a mass)");
+      else if (e.has("mass_kg")) e.at("mass_kg").fail("applies to a \"free\" indenter only");
+      s.indenters.push_back(m);
+    }
+  }
   const int c = s.excitation.dofs[0] ? 0 : s.excitation.dofs[1] ? 1 : 2;
-  bool measured = s.measure == s.excitation.set;
-  for (const SetDofs& h : s.held) measured = measured || (h.set == s.measure && h.dofs[c]);
-  if (!measured)
-    o.at("measure").fail("set \"" + s.measure + "\" must be the excitation set or held in the excitation's dof "
-                         "(its reaction is the measured force)");
+  if (value.contains("measure") && value["measure"].is_object()) {
+    const JsonNode m = o.at("measure");
+    m.expect_object({"contact"});
+    s.measure_contact = m.at("contact").string();
+  } else {
+    s.measure = o.at("measure").string();
+    if (!set_exists(s.measure))
+      o.at("measure").fail("unknown set \"" + s.measure + "\" (define it under \"sets\", or give {\"contact\": name})");
+    bool measured = s.measure == s.excitation.set;
+    for (const SetDofs& h : s.held) measured = measured || (h.set == s.measure && h.dofs[c]);
+    if (!measured)
+      o.at("measure").fail("set \"" + s.measure + "\" must be the excitation set or held in the excitation's dof "
+                           "(its reaction is the measured force)");
+  }
 
   if (o.has("damping")) {
     const JsonNode d = o.at("damping");
@@ -98,13 +130,22 @@ SteadyStateSpec parse_steady_state_spec(const nlohmann::json& value, const std::
     if (d.has("structural")) s.structural = d.at("structural").number_where(non_negative, ">= 0");
   }
   if (o.has("base_stress")) s.relaxed_base = o.at("base_stress").choice({"relaxed", "as_left"}) == "relaxed";
-  s.area = o.at("area_mm2").number_where(positive, "> 0");
+  if (value.contains("area_mm2") && value["area_mm2"].is_string()) {
+    if (o.at("area_mm2").choice({"contact"}) == "contact" && s.measure_contact.empty())
+      o.at("area_mm2").fail("\"contact\" needs a measured indenter (\"measure\": {\"contact\": name})");
+    s.area_from_contact = true;
+  } else {
+    s.area = o.at("area_mm2").number_where(positive, "> 0");
+  }
   s.thickness = o.at("thickness_mm").number_where(positive, "> 0");
   if (o.has("output")) {
     const JsonNode out = o.at("output");
     out.expect_object({"vtk"});
     if (out.has("vtk")) s.vtk = out.at("vtk").boolean();
   }
+  if (o.has("linear_solver")) s.iterative = o.at("linear_solver").choice({"iterative", "direct"}) == "iterative";
+  if (o.has("gmres_tolerance"))
+    s.gmres_tolerance = o.at("gmres_tolerance").number_where([](double x) { return x > 0.0 && x <= 1e-3; }, "in (0, 1e-3]");
   return s;
 }
 
