@@ -38,7 +38,7 @@ ProblemEvaluation EquilibriumProblem::summarize() const {
   return ev;
 }
 
-ProblemEvaluation EquilibriumProblem::predict(Eigen::VectorXd& x, LinearSolver& linear) {
+ProblemEvaluation EquilibriumProblem::predict(Eigen::VectorXd& x, LinearSolver& linear, TangentFactor* reuse) {
   const DofMap& dofs = assembler_.dofs();
   const Eigen::VectorXd u_end = u_;  // constrained entries hold the prescribed end values
   Eigen::VectorXd u_start = u_old_;
@@ -48,14 +48,27 @@ ProblemEvaluation EquilibriumProblem::predict(Eigen::VectorXd& x, LinearSolver& 
   r_full_ = f_int_ - f_ext_;
   for (const auto& term : terms_) term(u_start, r_full_, &K_);
   const ProblemEvaluation ev = summarize();
+  predictor_solved_ = false;
   if (ev.status == material::Status::failed) return ev;
 
   const auto& fixed = dofs.constrained_dofs();
   Eigen::VectorXd du_c(static_cast<Eigen::Index>(fixed.size()));
   for (std::size_t k = 0; k < fixed.size(); ++k) du_c(k) = u_end(fixed[k]) - u_old_(fixed[k]);
   const Eigen::VectorXd rhs = -(dofs.gather_free(r_full_) + K_fc_ * du_c);
-  linear.factorize(K_);
+
+  // Force scale of the boundary increment: what each free DOF is pushed with before cancellation.
+  const Eigen::VectorXd pushed = K_fc_.cwiseAbs() * du_c.cwiseAbs();
+  const Eigen::Index loaded = (pushed.array() > 0.0).count();
+  const double q_p = std::max(ev.force_scale, loaded ? pushed.sum() / static_cast<double>(loaded) : 0.0);
+  if (rhs.size() == 0 || rhs.cwiseAbs().maxCoeff() <= negligible_predictor_residual * q_p) return ev;
+
+  if (!reuse || !reuse->current) {
+    linear.factorize(K_);
+    if (reuse) *reuse = TangentFactor{true, 0};
+  }
   x += linear.solve(rhs);
+  if (reuse) ++reuse->uses;
+  predictor_solved_ = true;
   return ev;
 }
 

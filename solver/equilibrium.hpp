@@ -32,9 +32,20 @@ class EquilibriumProblem final : public NonlinearProblem {
   /// Linearised predictor of the prescribed-displacement increment: at u_start (free entries x,
   /// constrained entries at u_old) solves K_ff dx = -(r_free + K_fc du_c), du_c = prescribed
   /// increment [mm], and adds dx to x [mm]. Keeps elements from inverting when a large boundary
-  /// increment is imposed on one layer. Throws SingularMatrixError; on material failure returns
-  /// the failed evaluation and leaves x unchanged.
-  ProblemEvaluation predict(Eigen::VectorXd& x, LinearSolver& linear);
+  /// increment is imposed on one layer. Nothing is factorized or solved when the right-hand side is
+  /// negligible: max|rhs| <= negligible_predictor_residual * q_p, q_p = max(force scale at u_start,
+  /// mean of the non-zero entries of |K_fc| |du_c|) [N] (e.g. a homogeneous deformation the
+  /// boundary already imposes exactly). `reuse`: with tangent reuse (modified Newton), solve with
+  /// the held factorization if current, else factorize K_ff and record it; nullptr: always factorize.
+  /// Throws SingularMatrixError; on material failure returns the failed evaluation and leaves x
+  /// unchanged.
+  ProblemEvaluation predict(Eigen::VectorXd& x, LinearSolver& linear, TangentFactor* reuse = nullptr);
+
+  /// Relative size of a predictor right-hand side treated as zero [-] (as NewtonOptions'
+  /// zero_residual_tolerance: Newton would accept such a start point without correction).
+  static constexpr double negligible_predictor_residual = 1e-10;
+  /// True if the last predict() factorized or solved (false: right-hand side negligible).
+  bool predictor_solved() const { return predictor_solved_; }
 
   /// Full displacement vector of the last evaluation [mm].
   const Eigen::VectorXd& u() const { return u_; }
@@ -55,6 +66,7 @@ class EquilibriumProblem final : public NonlinearProblem {
   Eigen::VectorXd u_, f_int_, r_full_;
   SparseMatrix K_, K_fc_;
   AssemblyStatus status_;
+  bool predictor_solved_ = false;
 };
 
 }  // namespace cushion::solver

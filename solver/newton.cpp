@@ -17,9 +17,10 @@ std::string to_string(NewtonOutcome outcome) {
 }
 
 std::string format_iterate(const NewtonIterate& it) {
-  char line[200];
-  std::snprintf(line, sizeof line, "iter %2d  |r|max %.3e N  |r|2 %.3e N  q %.3e N  |c|max %.3e mm  step %.3f",
-                it.iteration, it.residual_max, it.residual_norm, it.force_scale, it.correction_max, it.line_search);
+  char line[220];
+  std::snprintf(line, sizeof line, "iter %2d  |r|max %.3e N  |r|2 %.3e N  q %.3e N  |c|max %.3e mm  step %.3f%s",
+                it.iteration, it.residual_max, it.residual_norm, it.force_scale, it.correction_max, it.line_search,
+                it.iteration == 0 ? "" : it.new_tangent ? "  K new" : "  K reused");
   return line;
 }
 
@@ -34,23 +35,40 @@ bool usable(const ProblemEvaluation& ev, const Eigen::VectorXd& r) {
 }  // namespace
 
 NewtonResult solve_newton(NonlinearProblem& problem, LinearSolver& linear, Eigen::VectorXd& x,
-                          const NewtonOptions& options, const std::function<void(const NewtonIterate&)>& log) {
+                          const NewtonOptions& options, const std::function<void(const NewtonIterate&)>& log,
+                          TangentFactor* factor) {
   NewtonResult result;
+  const bool reuse = options.tangent_reuse.enabled;
+  TangentFactor local;
+  TangentFactor& held = reuse && factor ? *factor : local;
+  // Full Newton assembles the tangent at every evaluation (the accepted trial's is the next one);
+  // modified Newton only when a factorization is due.
+  bool have_tangent = !reuse || !held.current;
   const Eigen::VectorXd x0 = x;
   Eigen::VectorXd r, r_trial;
-  ProblemEvaluation ev = problem.evaluate(x, r, true);
+  ProblemEvaluation ev = problem.evaluate(x, r, have_tangent);
   if (!usable(ev, r)) {
+    held.current = false;
     result.outcome = NewtonOutcome::failed;
     result.message = "material failure at the start of the increment: " + ev.message;
     return result;
   }
   result.dt_factor = ev.dt_factor;
+  // Any exit but convergence leaves no factor worth keeping (the caller cuts back).
+  auto give_up = [&](NewtonOutcome outcome, std::string message) {
+    held.current = false;
+    result.outcome = outcome;
+    result.message = std::move(message);
+    return result;
+  };
 
   double c_max = 0.0, step = 0.0;           // last applied correction and its line-search factor
+  bool new_tangent = false;                 // the last correction used a new factorization
   double energy = 0.0, first_energy = 0.0;  // |c_k . r_k-1| and |c_1 . r_0|
+  int growth = 0;                           // consecutive residual growths with a new tangent
   for (int k = 0;; ++k) {
     const double q = std::max({options.reference_force, ev.force_scale, options.force_floor});
-    const NewtonIterate it{k, max_abs(r), r.norm(), c_max, step, q};
+    const NewtonIterate it{k, max_abs(r), r.norm(), c_max, step, q, new_tangent};
     result.history.push_back(it);
     if (log) log(it);
 
@@ -69,34 +87,32 @@ NewtonResult solve_newton(NonlinearProblem& problem, LinearSolver& linear, Eigen
       return result;
     }
 
-    // Divergence tests.
-    const int n = static_cast<int>(result.history.size());
-    if (options.divergence_iterations > 0 && n > options.divergence_iterations) {
-      bool growing = true;
-      for (int j = n - options.divergence_iterations; j < n; ++j)
-        growing = growing && result.history[j].residual_max > result.history[j - 1].residual_max;
-      if (growing) {
-        result.outcome = NewtonOutcome::diverged;
-        result.message =
-            "residual grew in " + std::to_string(options.divergence_iterations) + " consecutive iterations";
-        return result;
-      }
+    // Divergence tests (a growth after a reused factor only triggers a new factorization).
+    if (k > 0) {
+      const bool grew = it.residual_max > result.history[k - 1].residual_max;
+      if (!grew) growth = 0;
+      else if (new_tangent) ++growth;
     }
-    if (k == options.max_iterations) {
-      result.outcome = NewtonOutcome::diverged;
-      result.message = "not converged in " + std::to_string(options.max_iterations) + " iterations";
-      return result;
-    }
+    if (options.divergence_iterations > 0 && growth >= options.divergence_iterations)
+      return give_up(NewtonOutcome::diverged,
+                     "residual grew in " + std::to_string(options.divergence_iterations) + " consecutive iterations");
+    if (k == options.max_iterations)
+      return give_up(NewtonOutcome::diverged, "not converged in " + std::to_string(options.max_iterations) + " iterations");
 
-    // Newton correction K c = -r.
+    // Correction K c = -r, with a new factorization unless a reused one is still contracting well.
+    new_tangent = !reuse || !held.current;
     Eigen::VectorXd c;
     try {
-      linear.factorize(problem.tangent());
+      if (new_tangent) {
+        if (!have_tangent) ev = problem.evaluate(x, r, true);  // same x: same r, now with its tangent
+        linear.factorize(problem.tangent());
+        held.current = true;
+        held.uses = 0;
+      }
       c = linear.solve(-r);
+      ++held.uses;
     } catch (const SingularMatrixError& e) {
-      result.outcome = NewtonOutcome::singular;
-      result.message = e.what();
-      return result;
+      return give_up(NewtonOutcome::singular, e.what());
     }
 
     // Backtracking line search on ||r||_2: quadratic model of ||r(x + s c)||^2 with slope -2 ||r||^2,
@@ -105,7 +121,7 @@ NewtonResult solve_newton(NonlinearProblem& problem, LinearSolver& linear, Eigen
     double s = 1.0, best_s = 0.0, best_phi = INFINITY;
     bool accepted = false;
     for (int ls = 0; ls <= options.max_line_search && s >= options.min_step; ++ls) {
-      ev = problem.evaluate(x + s * c, r_trial, true);
+      ev = problem.evaluate(x + s * c, r_trial, !reuse);
       if (!usable(ev, r_trial)) {
         s *= 0.5;
         continue;
@@ -120,14 +136,13 @@ NewtonResult solve_newton(NonlinearProblem& problem, LinearSolver& linear, Eigen
       s = std::clamp(s_model, 0.1 * s, 0.5 * s);
     }
     if (!accepted) {
-      if (best_phi == INFINITY) {
-        result.outcome = NewtonOutcome::failed;
-        result.message = "material failure at every line-search point: " + ev.message;
-        return result;
-      }
+      if (best_phi == INFINITY)
+        return give_up(NewtonOutcome::failed, "material failure at every line-search point: " + ev.message);
       s = best_s;  // no sufficient decrease: take the best trial; the divergence test decides later
-      ev = problem.evaluate(x + s * c, r_trial, true);
+      ev = problem.evaluate(x + s * c, r_trial, !reuse);
     }
+    have_tangent = !reuse;
+    if (reuse && (s < 1.0 || r_trial.norm() > options.tangent_reuse.max_contraction * phi0)) held.current = false;
     energy = std::abs(s * c.dot(r));
     if (k == 0) first_energy = energy;
     x += s * c;

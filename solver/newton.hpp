@@ -10,6 +10,14 @@
 ///   max|c| <= correction_tolerance * max(max|x - x0| + prescribed_increment, displacement_floor),
 /// or max|r| <= zero_residual_tolerance * q at any iteration (nothing left to correct), or, if
 /// energy_tolerance > 0, |c_k . r_k-1| <= energy_tolerance * |c_1 . r_0|.
+///
+/// Tangent (default: full Newton): every correction factorizes the tangent at the current iterate,
+/// and nothing is factorized when the start point already passes the tests. With
+/// NewtonOptions::tangent_reuse (modified Newton) a factorization is kept across iterations and
+/// increments while it contracts the residual well (||r_k||_2 <= max_contraction ||r_k-1||_2 with a
+/// full step); after a slow, growing or shortened step, or any unconverged outcome (the caller then
+/// cuts back), the next correction factorizes the current tangent again. Same convergence tests,
+/// linear instead of quadratic rate, far fewer factorizations when they dominate the cost.
 #include <functional>
 #include <string>
 #include <vector>
@@ -46,6 +54,20 @@ enum class NewtonOutcome { converged, diverged, failed, singular };
 /// "converged", "diverged", "failed" or "singular".
 std::string to_string(NewtonOutcome outcome);
 
+/// Modified Newton: when to keep the factorization of an earlier tangent.
+struct TangentReuse {
+  bool enabled = false;           ///< false: full Newton (a new factorization for every correction)
+  double max_contraction = 0.5;   ///< reused factor kept while ||r_k||_2 / ||r_k-1||_2 <= this [-]
+};
+
+/// The factorization a LinearSolver holds between solves, for tangent reuse across increments.
+/// Owned by the caller next to its LinearSolver and passed to every solve that uses that solver;
+/// set `current = false` if anything else factorizes with the solver in between.
+struct TangentFactor {
+  bool current = false;  ///< the solver holds a usable factorization of an earlier tangent
+  int uses = 0;          ///< corrections solved with it so far
+};
+
 /// Tolerances and limits (defaults after ABAQUS: R_n = 5e-3, C_n = 1e-2, 16 iterations).
 struct NewtonOptions {
   int max_iterations = 16;                 ///< corrections before giving up (diverged)
@@ -60,7 +82,9 @@ struct NewtonOptions {
   bool line_search = true;                 ///< backtracking on ||r||_2 (false: full steps)
   int max_line_search = 6;                 ///< backtracking steps per iteration
   double min_step = 1.0 / 32.0;            ///< smallest line-search factor [-]
-  int divergence_iterations = 2;           ///< residual growing this many iterations in a row: diverged
+  int divergence_iterations = 2;           ///< residual growing this many iterations in a row with a new
+                                           ///< tangent each: diverged (growth with a reused one refactorizes)
+  TangentReuse tangent_reuse;              ///< modified Newton (off: full Newton)
 };
 
 /// One iteration of the log.
@@ -71,9 +95,11 @@ struct NewtonIterate {
   double correction_max = 0.0;   ///< max|c| of the applied (scaled) correction [mm]
   double line_search = 1.0;      ///< accepted line-search factor [-]
   double force_scale = 0.0;      ///< q used in the residual test [N]
+  bool new_tangent = false;      ///< the correction used a new factorization (false: reused, or k = 0)
 };
 
-/// One log line: "iter 3  |r|max 1.2e-04 N  |r|2 ...  |c|max ... mm  step 1.00".
+/// One log line: "iter 3  |r|max 1.2e-04 N  |r|2 ...  |c|max ... mm  step 1.000  K new" (K: the
+/// tangent of the correction, "new" or "reused"; absent at iteration 0).
 std::string format_iterate(const NewtonIterate& it);
 
 /// Outcome, iteration count and log of one solve.
@@ -89,8 +115,11 @@ struct NewtonResult {
 
 /// Solves r(x) = 0 from x (in: start, out: last iterate) with the given linear solver (kept by the
 /// caller so its symbolic analysis is reused across increments). `log` is called once per iterate.
+/// `factor`: with tangent reuse, the record of what `linear` holds (kept across increments by the
+/// caller; nullptr: reuse only within this solve). Ignored by full Newton.
 NewtonResult solve_newton(NonlinearProblem& problem, LinearSolver& linear, Eigen::VectorXd& x,
                           const NewtonOptions& options = {},
-                          const std::function<void(const NewtonIterate&)>& log = {});
+                          const std::function<void(const NewtonIterate&)>& log = {},
+                          TangentFactor* factor = nullptr);
 
 }  // namespace cushion::solver

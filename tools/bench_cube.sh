@@ -1,33 +1,57 @@
 #!/usr/bin/env bash
 # Benchmark (not a test): the cube_compression case (load 30 s, hold 2 s, unload 30 s, hyperfoam +
-# Prony) on n^3 hex8 meshes of the quarter cube; prints the figures `cushion run` reports.
+# Prony) on n^3 hex8 meshes of the quarter cube. Prints a markdown table of the figures `cushion run`
+# reports plus the CPU time (user + system, all threads) and peak resident memory from
+# /usr/bin/time -v and the machine load (1-minute load average before and after each run): on a
+# shared machine wall times are only meaningful with the load; CPU time is less sensitive to it.
 # Usage: tools/bench_cube.sh [CUSHION_BINARY] [n ...]     (default: build/tools/cushion, n = 10 20 40)
+# Environment: OPENBLAS_NUM_THREADS (BLAS threads of the CHOLMOD factorization; 1 is faster on a
+# loaded machine), BENCH_KEEP=DIR keeps each run's output and summary in DIR/out_n.
+# A long run: nice -n 10 tools/bench_cube.sh build/tools/cushion 40 > bench_40.md 2>&1 &
 set -euo pipefail
-here="$(cd "$(dirname "$0")/.." && pwd)"
-cushion="${1:-$here/build/tools/cushion}"
-shift || true
-if [ $# -gt 0 ]; then sizes=("$@"); else sizes=(10 20 40); fi
-work="$(mktemp -d /tmp/cushion_bench_cube.XXXXXX)"
-trap 'rm -rf "$work"' EXIT
-echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
-printf '%-6s %8s %10s %12s %10s %10s %8s %8s %10s %10s %9s\n' mesh elements dofs nonzeros "asm_us/el" "fact_s" n_fact iters "total_s" "wall_s" "peak_MiB"
-for n in "${sizes[@]}"; do
-  # The shipped case with its mesh replaced by n x n x n elements (paths made absolute).
-  sed -e "s|\"elements\": \[4, 4, 8\]|\"elements\": [$n, $n, $n]|" \
-      -e "s|\"../materials/paper_table3.json\"|\"$here/cases/materials/paper_table3.json\"|" \
-      "$here/cases/cube_compression/case.json" > "$work/cube_$n.json"
-  start=$(date +%s%N)
-  "$cushion" run "$work/cube_$n.json" -o "$work/out_$n" --quiet > "$work/summary_$n.txt"
-  wall=$(awk -v a="$start" -v b="$(date +%s%N)" 'BEGIN { print (b - a) / 1e9 }')
-  s="$work/summary_$n.txt"
-  elements=$(sed -n 's/.*model: [0-9]* nodes, \([0-9]*\) elements.*/\1/p' "$s")
-  dofs=$(sed -n 's/.* \([0-9]*\) free dofs.*/\1/p' "$s")
-  nnz=$(sed -n 's/.* \([0-9]*\) nonzeros.*/\1/p' "$s")
-  asm=$(sed -n 's/.*, \([0-9.e+-]*\) us per element.*/\1/p' "$s")
-  nfact=$(sed -n 's/.*, \([0-9]*\) factorizations, .*/\1/p' "$s")
-  fact=$(sed -n 's/.*factorizations, \([0-9.]*\) s .*/\1/p' "$s")
-  iters=$(sed -n 's/.*cut-backs, \([0-9]*\) Newton iterations.*/\1/p' "$s")
-  total=$(sed -n 's/.*wall time \([0-9.]*\) s.*/\1/p' "$s")
-  peak=$(sed -n 's/.*peak memory: \([0-9.]*\) MiB.*/\1/p' "$s")
-  printf '%-6s %8s %10s %12s %10s %10s %8s %8s %10s %10.2f %9s\n' "${n}^3" "$elements" "$dofs" "$nnz" "$asm" "$fact" "$nfact" "$iters" "$total" "$wall" "$peak"
-done
+# (the whole script is read before it runs: editing it during a long run is harmless)
+main() {
+  here="$(cd "$(dirname "$0")/.." && pwd)"
+  cushion="${1:-$here/build/tools/cushion}"
+  shift || true
+  if [ $# -gt 0 ]; then sizes=("$@"); else sizes=(10 20 40); fi
+  [ -x /usr/bin/time ] || { echo "bench_cube.sh: /usr/bin/time is needed (Debian package 'time')" >&2; exit 1; }
+  work="${BENCH_KEEP:-$(mktemp -d /tmp/cushion_bench_cube.XXXXXX)}"
+  mkdir -p "$work"
+  [ -n "${BENCH_KEEP:-}" ] || trap 'rm -rf "$work"' EXIT
+  load() { cut -d' ' -f1 /proc/loadavg; }
+
+  echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-unset}"
+  echo
+  echo "| mesh | elements | free dofs | nonzeros | assembly us/element | factorizations | factorization s (each) | symbolic analyses | increments | Newton iterations | total s (wall) | CPU s | peak RSS MiB | load before/after |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+  for n in "${sizes[@]}"; do
+    # The shipped case with its mesh replaced by n x n x n elements (paths made absolute).
+    sed -e "s|\"elements\": \[4, 4, 8\]|\"elements\": [$n, $n, $n]|" \
+        -e "s|\"../materials/paper_table3.json\"|\"$here/cases/materials/paper_table3.json\"|" \
+        "$here/cases/cube_compression/case.json" > "$work/cube_$n.json"
+    s="$work/summary_$n.txt"
+    before=$(load)
+    /usr/bin/time -v -o "$work/time_$n.txt" "$cushion" run "$work/cube_$n.json" -o "$work/out_$n" --quiet > "$s"
+    after=$(load)
+    field() { sed -n "$1" "$s" | head -1; }
+    elements=$(field 's/.*model: [0-9]* nodes, \([0-9]*\) elements.*/\1/p')
+    dofs=$(field 's/.* \([0-9]*\) free dofs.*/\1/p')
+    nnz=$(field 's/.* \([0-9]*\) nonzeros.*/\1/p')
+    asm=$(field 's/.*, \([0-9.e+-]*\) us per element.*/\1/p')
+    nfact=$(field 's/.*, \([0-9]*\) factorizations, .*/\1/p')
+    fact=$(field 's/.*factorizations, \([0-9.]*\) s .*/\1/p')
+    each=$(field 's/.*factorizations, [0-9.]* s (\([0-9.e+-]*\) s each).*/\1/p')
+    analyses=$(field 's/.*, \([0-9]*\) symbolic analyses.*/\1/p')
+    increments=$(field 's/.*steps, \([0-9]*\) increments.*/\1/p')
+    iters=$(field 's/.*cut-backs, \([0-9]*\) Newton iterations.*/\1/p')
+    total=$(field 's/.*wall time \([0-9.]*\) s.*/\1/p')
+    rss_kb=$(sed -n 's/.*Maximum resident set size (kbytes): \([0-9]*\).*/\1/p' "$work/time_$n.txt")
+    cpu=$(awk -F': ' '/User time|System time/ { t += $2 } END { printf "%.1f", t }' "$work/time_$n.txt")
+    printf '| %s^3 | %s | %s | %s | %s | %s | %s (%s) | %s | %s | %s | %s | %s | %d | %s / %s |\n' "$n" "$elements" \
+      "$dofs" "$nnz" "$asm" "$nfact" "$fact" "$each" "$analyses" "$increments" "$iters" "$total" "$cpu" \
+      $((rss_kb / 1024)) "$before" "$after"
+  done
+}
+main "$@"
+exit

@@ -10,7 +10,7 @@ set multiplot layout 1,2 title "SIT-BAR, 20 mm preload, base shaken 0.25 m/s^2 p
 set xlabel "frequency [Hz]"
 set xrange [0:21]
 set grid
-set key left top
+set key right bottom
 set ylabel "dynamic modulus [kPa]"
 test = "../campaign_synthetic/campaign/dynamic_preload25.csv"
 plot out."/sweep_rayleigh_sweep.csv" using "frequency_Hz":"dynamic_modulus_kPa" with linespoints pt 5 title "FE, Prony + Rayleigh (alpha 180 1/s, beta 1e-4 s)", \

@@ -33,6 +33,10 @@ std::string fmt(double v, int digits = 3) {
 /// One fitted parameter: where it lives and how it is scaled.
 struct FreeParameter {
   std::size_t effect = 0;  ///< index in the candidate's effect list
+  std::size_t base_term = npos;  ///< hyperfoam term whose mu this factor scales (base refit), else npos
+  std::size_t prony_term = npos; ///< Prony term whose a_i = g_i/(1 - sum g) this factor scales (base refit)
+  bool is_base() const { return base_term != npos || prony_term != npos; }
+  static constexpr std::size_t npos = static_cast<std::size_t>(-1);
   const material::EffectParameterInfo* info = nullptr;
   double lower = 0.0, upper = 0.0;  ///< bounds of u
   double to_u(double x) const { return info->log_scale ? std::log10(x) : x / scale(); }
@@ -50,7 +54,7 @@ class CandidateModel {
       const material::EffectInfo* info = material::find_effect(effects_[e].kind);
       for (const auto& p : info->parameters) {
         if (!p.fit) continue;
-        FreeParameter f{e, &p};
+        FreeParameter f{e, FreeParameter::npos, FreeParameter::npos, &p};
         if (p.log_scale) {
           const double lo = std::max(p.min_exclusive ? p.min * (1 + 1e-12) + 1e-300 : p.min, p.default_value * 1e-4);
           f.lower = std::log10(std::max(lo, 1e-300));
@@ -65,22 +69,48 @@ class CandidateModel {
     }
   }
 
+  /// Adds a log10 factor in [-1, 1] on the mu of every hyperfoam term and on the relative modulus
+  /// a_i = g_i/(1 - sum g) of every Prony term of the base (the base-refit reference; no effect).
+  void free_base_moduli() {
+    static const material::EffectParameterInfo factor{"modulus_factor", "factor on a base modulus", 1.0, 0.1, 10.0,
+                                                      true, true, true};
+    for (std::size_t t = 0; t < base_.hyperfoam.size(); ++t) free_.push_back({0, t, FreeParameter::npos, &factor, -1.0, 1.0});
+    for (std::size_t t = 0; t < base_.prony.size(); ++t) free_.push_back({0, FreeParameter::npos, t, &factor, -1.0, 1.0});
+  }
+
   const std::vector<FreeParameter>& free() const { return free_; }
 
   std::vector<material::EffectSpec> effects_at(const double* u) const {
     std::vector<material::EffectSpec> e = effects_;
-    for (std::size_t i = 0; i < free_.size(); ++i) e[free_[i].effect].parameters[free_[i].info->name] = free_[i].to_x(u[i]);
+    for (std::size_t i = 0; i < free_.size(); ++i)
+      if (!free_[i].is_base()) e[free_[i].effect].parameters[free_[i].info->name] = free_[i].to_x(u[i]);
     return e;
   }
   std::vector<double> start() const {
     std::vector<double> u;
-    for (const auto& f : free_) u.push_back(std::clamp(f.to_u(effects_[f.effect].parameters.at(f.info->name)), f.lower, f.upper));
+    for (const auto& f : free_)
+      u.push_back(f.is_base()
+                      ? 0.0
+                      : std::clamp(f.to_u(effects_[f.effect].parameters.at(f.info->name)), f.lower, f.upper));
     return u;
   }
 
   /// The spec with the effects at u (effects needing a viscoelastic model first).
   material::MaterialSpec spec_at(const double* u) const {
     material::MaterialSpec s = base_;
+    std::vector<double> a;  // Prony relative moduli, scaled, then back to g_i = a_i/(1 + sum a)
+    double g_sum = 0.0, a_sum = 0.0;
+    for (const auto& t : s.prony) g_sum += t.g;
+    for (const auto& t : s.prony) a.push_back(t.g / (1.0 - g_sum));
+    bool prony_scaled = false;
+    for (std::size_t i = 0; i < free_.size(); ++i) {
+      if (free_[i].base_term != FreeParameter::npos) s.hyperfoam[free_[i].base_term].mu *= free_[i].to_x(u[i]);
+      if (free_[i].prony_term != FreeParameter::npos) a[free_[i].prony_term] *= free_[i].to_x(u[i]), prony_scaled = true;
+    }
+    if (prony_scaled) {
+      for (double x : a) a_sum += x;
+      for (std::size_t k = 0; k < a.size(); ++k) s.prony[k].g = a[k] / (1.0 + a_sum);
+    }
     for (const auto& e : effects_at(u)) {
       if (material::find_effect(e.kind)->needs_viscoelastic)
         s.effects.insert(s.effects.begin(), e);
@@ -161,11 +191,15 @@ void scan_start(const CandidateModel& m, std::vector<double>& u) {
 
 CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector<material::EffectSpec>& start_effects,
                            const Campaign& campaign, const std::vector<TestNoise>& noise, std::size_t n_residuals,
-                           double baseline_bic, const DiagnoseOptions& options, bool scan) {
+                           double baseline_bic, const DiagnoseOptions& options, bool scan, bool refit_base = false) {
   const auto t0 = Clock::now();
   CandidateFit fit;
   for (const auto& e : start_effects) fit.kinds.push_back(e.kind);
   CandidateModel model(base, start_effects, campaign, noise, options);
+  if (refit_base) {
+    model.free_base_moduli();
+    fit.kinds.push_back("base refit (hyperfoam and Prony moduli)");
+  }
   std::vector<double> u = model.start();
   fit.parameters = static_cast<int>(u.size());
   try {
@@ -194,6 +228,9 @@ CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector
     ceres::Solve(so, &problem, &summary);
     fit.converged = summary.IsSolutionUsable();
     fit.message = summary.BriefReport();
+    if (summary.termination_type == ceres::NO_CONVERGENCE)
+      fit.warning = "did not converge within " + std::to_string(options.max_iterations) +
+                    " iterations; ranked with the best parameters found (chi2/N may still fall: raise max_iterations)";
     const auto r = model.compare_at(u.data());
     if (!r) throw std::runtime_error("the model run fails at the fitted parameters");
     fit.compare = *r;
@@ -389,7 +426,20 @@ Diagnosis diagnose(const material::MaterialSpec& baseline, const Campaign& campa
   };
   std::vector<std::function<CandidateFit()>> jobs;
   for (const auto& s : singles) jobs.push_back(job(s, true));
+  // Reference: the base refitted WITHOUT any effect (hyperfoam moduli only). An effect must beat it too,
+  // else the residual is as well explained by a base calibration that is slightly off.
+  const bool base_ref = baseline.base == material::MaterialSpec::Base::hyperfoam && !baseline.hyperfoam.empty();
+  if (base_ref)
+    jobs.push_back([&] {
+      return fit_candidate(baseline, {}, campaign, d.noise, d.residuals, d.baseline_bic, options, true, true);
+    });
   std::vector<CandidateFit> fits = run_all(jobs, options.threads);
+  if (base_ref) {
+    d.base_refit = std::move(fits.back());
+    fits.pop_back();
+    log << "diagnose: " << d.base_refit->name() << ": dBIC " << fmt(d.base_refit->delta_bic, 4) << ", "
+        << d.base_refit->evaluations << " runs, " << fmt(d.base_refit->seconds, 2) << " s\n";
+  }
   for (const auto& f : fits)
     log << "diagnose: " << f.name() << ": dBIC " << fmt(f.delta_bic, 4) << ", " << f.evaluations << " runs, "
         << fmt(f.seconds, 2) << " s" << (f.converged ? "" : " (" + f.message + ")") << "\n";
@@ -417,13 +467,18 @@ Diagnosis diagnose(const material::MaterialSpec& baseline, const Campaign& campa
     log << "diagnose: " << f.name() << ": dBIC " << fmt(f.delta_bic, 4) << ", " << f.evaluations << " runs, "
         << fmt(f.seconds, 2) << " s\n";
 
-  for (auto& f : fits) f.supported = f.converged && f.delta_bic > options.strong_evidence;
+  const double base_gain = d.base_refit && d.base_refit->converged ? std::max(0.0, d.base_refit->delta_bic) : 0.0;
+  for (auto& f : fits) f.supported = f.converged && f.delta_bic > base_gain + options.strong_evidence;
   const double best_single = top.empty() ? 0.0 : fits[top.front()].delta_bic;
-  for (auto& f : pairs) f.supported = f.converged && f.delta_bic > best_single + options.strong_evidence;
+  for (auto& f : pairs)
+    f.supported = f.converged && f.delta_bic > std::max(best_single, base_gain) + options.strong_evidence;
   for (auto& f : fits) d.candidates.push_back(std::move(f));
   for (auto& f : pairs) d.candidates.push_back(std::move(f));
   for (const auto& f : d.candidates)
     if (!f.converged) d.warnings.push_back("candidate " + f.name() + ": " + f.message);
+    else if (!f.warning.empty()) d.warnings.push_back("candidate " + f.name() + ": " + f.warning);
+  if (d.base_refit && !d.base_refit->converged)
+    d.warnings.push_back("candidate " + d.base_refit->name() + ": " + d.base_refit->message);
   std::stable_sort(d.candidates.begin(), d.candidates.end(), [](const CandidateFit& a, const CandidateFit& b) {
     if (a.supported != b.supported) return a.supported;
     return a.delta_bic > b.delta_bic;
@@ -463,9 +518,23 @@ Diagnosis diagnose(const material::MaterialSpec& baseline, const Campaign& campa
     d.verdict = o.str();
   } else {
     d.fragment = nullptr;
-    d.verdict = "The model fails beyond noise, but no catalogue effect reduces the penalised error convincingly (dBIC > " +
-                fmt(options.strong_evidence) +
-                "): the base calibration is the first suspect (rerun `cushion fit`, e.g. with --refit-on all).";
+    std::ostringstream o;
+    if (base_gain > options.strong_evidence) {
+      const CandidateFit& b = *d.base_refit;
+      o << "No effect can be told from a base calibration that is slightly off: refitting only the base moduli "
+           "(hyperfoam mu_i and Prony g_i, no effect) gives dBIC "
+        << fmt(b.delta_bic, 4) << " (chi2/N " << fmt(d.baseline_chi2 / d.residuals) << " -> " << fmt(b.chi2 / d.residuals)
+        << (b.compare.at_noise_level(options.compare.noise_level_ratio) ? ", every test at the noise level" : "")
+        << ") and no catalogue effect beats it by dBIC > " << fmt(options.strong_evidence);
+      if (!d.candidates.empty() && std::isfinite(d.candidates.front().delta_bic))
+        o << " (best: " << d.candidates.front().name() << ", dBIC " << fmt(d.candidates.front().delta_bic, 4) << ")";
+      o << ". Recalibrate the base first (rerun `cushion fit`, e.g. with --refit-on all), then diagnose again.";
+    } else {
+      o << "The model fails beyond noise, but no catalogue effect reduces the penalised error convincingly (dBIC > "
+        << fmt(options.strong_evidence) << "): the base calibration is the first suspect (rerun `cushion fit`, e.g. with "
+        << "--refit-on all).";
+    }
+    d.verdict = o.str();
   }
   d.seconds = seconds_since(t0);
   return d;

@@ -18,8 +18,11 @@
 ///     combined two by two, started from their single fits.
 ///  4. Penalised figure: BIC = chi2 + k ln N (chi2: sum of squared noise-normalised residuals, N their
 ///     number, k the fitted parameters); dBIC = BIC_baseline - BIC_candidate (> 0: better). A candidate
-///     is SUPPORTED when dBIC > strong_evidence (Kass & Raftery: > 10 is very strong); a pair is preferred
-///     to the best single only when its dBIC exceeds the single's by strong_evidence too.
+///     is SUPPORTED when dBIC > strong_evidence (Kass & Raftery: > 10 is very strong) AND it beats by
+///     strong_evidence the base-refit reference (the base moduli refitted without effect: one log10
+///     factor in [-1, 1] on each hyperfoam mu_i and on each Prony a_i = g_i/(1 - sum g)): a residual that a slightly different base explains as well is not
+///     evidence of a missing effect. A pair is preferred to the best single only when its dBIC exceeds the
+///     single's by strong_evidence too.
 ///  5. Verdict: the best supported candidate, its error per test and region after the refit, whether
 ///     every test then lies at the noise level, the evidence in words (data signatures: rate dependence
 ///     of the hysteresis, loading vs unloading, phase and modulus error vs frequency, preload dependence
@@ -52,6 +55,7 @@ struct CandidateFit {
   int parameters = 0;                      ///< k
   bool converged = false;
   std::string message;                     ///< Ceres report, or why the candidate failed
+  std::string warning;                     ///< usable but not converged (iteration limit), else empty
   double chi2 = 0.0, bic = 0.0, delta_bic = 0.0;
   bool supported = false;
   CompareResult compare;                   ///< every test with the candidate added
@@ -67,6 +71,9 @@ struct Diagnosis {
   double baseline_chi2 = 0.0, baseline_bic = 0.0;
   bool at_noise_level = false;             ///< the baseline already at the noise level
   std::vector<CandidateFit> candidates;    ///< ranked, largest dBIC first
+  /// Reference fit: the base moduli (hyperfoam mu_i, Prony a_i) refitted WITHOUT any effect. An
+  /// effect is supported only when its dBIC exceeds this one's by strong_evidence as well.
+  std::optional<CandidateFit> base_refit;
   std::optional<std::size_t> winner;       ///< index into candidates
   bool winner_at_noise_level = false;
   std::string verdict;                     ///< one paragraph a person acts on
@@ -79,7 +86,7 @@ struct Diagnosis {
 
 /// Runs the method above. Bad input does not throw: a campaign with one test, or without tests of a
 /// kind, is diagnosed with a warning saying what cannot be told apart; a candidate that fails is
-/// reported with its message. Throws InputError only when the baseline material cannot be built.
+/// reported with its message; one stopped by max_iterations is still ranked, with a warning naming it. Throws InputError only when the baseline material cannot be built.
 Diagnosis diagnose(const material::MaterialSpec& baseline, const Campaign& campaign, const DiagnoseOptions& options,
                    std::ostream& log);
 

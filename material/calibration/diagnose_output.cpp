@@ -45,6 +45,11 @@ nlohmann::json diagnosis_json(const Diagnosis& d) {
   j["winner"] = d.winner ? nlohmann::json(d.candidates[*d.winner].name()) : nlohmann::json(nullptr);
   j["winner_at_noise_level"] = d.winner_at_noise_level;
   j["fragment"] = d.fragment;
+  if (d.base_refit)
+    j["base_refit"] = {{"name", d.base_refit->name()}, {"parameters", d.base_refit->parameters},
+                       {"chi2", d.base_refit->chi2}, {"converged", d.base_refit->converged},
+                       {"delta_bic", std::isfinite(d.base_refit->delta_bic) ? nlohmann::json(d.base_refit->delta_bic)
+                                                                            : nlohmann::json(nullptr)}};
   j["candidates"] = nlohmann::json::array();
   for (std::size_t i = 0; i < d.candidates.size(); ++i) {
     const CandidateFit& c = d.candidates[i];
@@ -69,7 +74,7 @@ std::string diagnosis_markdown(const Diagnosis& d) {
   o << "\n## Evidence in the data (signatures)\n\n";
   for (const auto& e : d.evidence) o << "- " << e << "\n";
   if (!d.candidates.empty()) {
-    o << "\n## Candidates (refit of the effect's parameters only; base calibration kept)\n\n"
+    o << "\n## Candidates (refit of the effect's parameters only; base calibration kept; ref: the base refitted without effect)\n\n"
       << "dBIC = BIC(baseline) - BIC(candidate), BIC = chi2 + k ln N on noise-normalised residuals, N = " << d.residuals
       << ", baseline chi2/N = " << fmt(d.baseline_chi2 / std::max<std::size_t>(1, d.residuals)) << ".\n\n";
     std::vector<std::string> names;
@@ -81,6 +86,14 @@ std::string diagnosis_markdown(const Diagnosis& d) {
     o << "---|\n| - | baseline | 0 | 0 | " << fmt(d.baseline_chi2 / d.residuals) << " |";
     for (const auto& t : d.baseline.tests) o << " " << fmt(t.noise_ratio(), 3) << " |";
     o << " |\n";
+    if (d.base_refit) {  // the reference every effect must beat
+      const CandidateFit& b = *d.base_refit;
+      o << "| ref | " << b.name() << " | " << b.parameters << " | " << (std::isfinite(b.delta_bic) ? fmt(b.delta_bic, 4) : "-")
+        << " | " << (b.compare.tests.empty() ? "-" : fmt(b.chi2 / d.residuals)) << " |";
+      for (std::size_t t = 0; t < names.size(); ++t)
+        o << " " << (t < b.compare.tests.size() ? fmt(b.compare.tests[t].noise_ratio(), 3) : "-") << " |";
+      o << " an effect must beat this by the evidence threshold |\n";
+    }
     for (std::size_t i = 0; i < d.candidates.size(); ++i) {
       const CandidateFit& c = d.candidates[i];
       o << "| " << i + 1 << " | " << c.name() << " | " << c.parameters << " | "

@@ -1,9 +1,23 @@
-// Benchmark (not a test, not run by ctest): assembly throughput for 1..N threads and one Newton
-// solve of a compressed foam block. Usage: bench_solver [elements_per_axis=20] [max_threads=2]
+// Benchmark (not a test, not run by ctest).
+//   bench_solver [elements_per_axis=20] [max_threads=2]
+//       assembly throughput for 1..max_threads threads and one Newton solve of a compressed block;
+//   bench_solver factor [n=20] [orderings=default,amd,metis,nesdis]
+//       CHOLMOD setup on the tangent of the quarter cube case (40 x 40 x 80 mm, n^3 hex8, symmetry
+//       planes, top compressed 20 %): for each ordering the analysis and factorization times, the
+//       ordering CHOLMOD selected, nnz(L) and flops, with 1 and 2 OpenBLAS threads; then the
+//       project's own solver (make_linear_solver) and its analysis_report().
+#include <dlfcn.h>
+
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <cstdlib>
+#include <cstring>
+#include <sstream>
+#include <string>
 #include <thread>
+
+#include <Eigen/CholmodSupport>
 
 #include "material/hyperfoam.hpp"
 #include "mesh/structured_hex.hpp"
@@ -12,13 +26,116 @@
 using namespace cushion;
 using Clock = std::chrono::steady_clock;
 
-static double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
+namespace {
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+/// CPU seconds of the process (all threads) since c0: less sensitive to a loaded machine than wall time.
+double cpu_since(std::clock_t c0) { return double(std::clock() - c0) / CLOCKS_PER_SEC; }
+
+/// OpenBLAS thread control through the dynamic symbols (absent with another BLAS).
+int blas_threads(int set = 0) {
+  using Set = void (*)(int);
+  using Get = int (*)();
+  if (set > 0)
+    if (auto f = reinterpret_cast<Set>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) f(set);
+  auto g = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+  return g ? g() : -1;
 }
 
-int main(int argc, char** argv) {
-  const int n = argc > 1 ? std::atoi(argv[1]) : 20;
-  const unsigned max_threads = argc > 2 ? std::atoi(argv[2]) : std::max(1u, std::thread::hardware_concurrency());
+const char* ordering_name(int o) {
+  switch (o) {
+    case CHOLMOD_AMD: return "amd";
+    case CHOLMOD_METIS: return "metis";
+    case CHOLMOD_NESDIS: return "nesdis";
+    case CHOLMOD_NATURAL: return "natural";
+  }
+  return "other";
+}
+
+/// Quarter cube with symmetry planes x = 0, y = 0, z = 0 and the top prescribed in z.
+struct CubeModel {
+  mesh::Mesh m;
+  std::vector<bool> constrained;
+  Eigen::VectorXd u_end;
+};
+
+CubeModel quarter_cube(int n, double top_mm) {
+  mesh::BlockSpec spec;
+  spec.high = Eigen::Vector3d(40, 40, 80);  // [mm]
+  spec.n = {n, n, n};
+  CubeModel c{mesh::structured_block(spec), {}, {}};
+  c.constrained.assign(3 * c.m.num_nodes(), false);
+  c.u_end = Eigen::VectorXd::Zero(3 * c.m.num_nodes());
+  for (std::size_t a = 0; a < c.m.num_nodes(); ++a) {
+    const Eigen::Vector3d& X = c.m.nodes[a];
+    for (int i = 0; i < 3; ++i)
+      if (X(i) < 1e-9) c.constrained[3 * a + i] = true;
+    if (X(2) > 80 - 1e-9) c.constrained[3 * a + 2] = true, c.u_end(3 * a + 2) = top_mm;
+  }
+  return c;
+}
+
+int bench_factor(int n, const std::string& orderings) {
+  const CubeModel c = quarter_cube(n, -16.0);
+  auto foam = std::make_shared<material::Hyperfoam>(std::vector<material::HyperfoamTerm>{{0.01, 10.0, 0.0}});
+  solver::Section section{"foam", {}, foam, solver::Formulation::full, 0.0};
+  for (std::size_t e = 0; e < c.m.num_elements(); ++e) section.elements.push_back(static_cast<int>(e));
+  const solver::Assembler assembler(c.m, {section}, solver::DofMap(c.m.num_nodes(), c.constrained),
+                                    {std::max(1u, std::thread::hardware_concurrency())});
+  solver::StateStore state = assembler.make_state_store();
+  solver::SparseMatrix K = assembler.make_matrix();
+  Eigen::VectorXd f;
+  // Homogeneous 20 % compression (nu = 0: no lateral motion): a representative SPD tangent.
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(c.u_end.size());
+  for (std::size_t a = 0; a < c.m.num_nodes(); ++a) u(3 * a + 2) = -0.2 * c.m.nodes[a](2);
+  auto t0 = Clock::now();
+  assembler.assemble(u, u, 0.0, state, f, &K);
+  std::printf("quarter cube %d^3 hex8: %ld free dofs, %ld nonzeros (full), assembly %.3f s; BLAS threads %d\n", n,
+              static_cast<long>(K.rows()), static_cast<long>(K.nonZeros()), seconds_since(t0), blas_threads());
+  const Eigen::VectorXd b = Eigen::VectorXd::Ones(K.rows());
+
+  std::printf("%-8s %-7s %-8s %10s %10s %10s %12s %12s %10s\n", "ordering", "threads", "selected", "analyse_s",
+              "factor_s", "factor_cpu", "nnz(L)", "flop", "residual");
+  std::stringstream list(orderings);
+  for (std::string name; std::getline(list, name, ',');) {
+    for (int threads : {1, 2}) {
+      blas_threads(threads);
+      Eigen::CholmodSupernodalLLT<solver::SparseMatrix, Eigen::Lower> llt;
+      cholmod_common& cm = llt.cholmod();
+      if (name != "default") {
+        cm.nmethods = 1;
+        cm.method[0].ordering = name == "amd" ? CHOLMOD_AMD : name == "metis" ? CHOLMOD_METIS : CHOLMOD_NESDIS;
+        cm.postorder = 1;
+      }
+      t0 = Clock::now();
+      llt.analyzePattern(K);
+      const double analyse = seconds_since(t0);
+      t0 = Clock::now();
+      const std::clock_t c0 = std::clock();
+      llt.factorize(K);
+      const double factor = seconds_since(t0), factor_cpu = cpu_since(c0);
+      const Eigen::VectorXd x = llt.solve(b);
+      std::printf("%-8s %-7d %-8s %10.3f %10.3f %10.3f %12.4g %12.4g %10.2e\n", name.c_str(), blas_threads(),
+                  ordering_name(cm.method[cm.selected].ordering), analyse, factor, factor_cpu, cm.lnz, cm.fl,
+                  (K.selfadjointView<Eigen::Lower>() * x - b).norm() / b.norm());
+      std::fflush(stdout);
+    }
+  }
+  blas_threads(2);
+  auto linear = solver::make_linear_solver(solver::LinearSolverKind::cholesky_or_lu);
+  t0 = Clock::now();
+  linear->factorize(K);
+  std::printf("make_linear_solver(cholesky_or_lu): analysis + factorization %.3f s, %s; %s\n", seconds_since(t0),
+              linear->method().c_str(), linear->analysis_report().c_str());
+  t0 = Clock::now();
+  const std::clock_t c0 = std::clock();
+  linear->factorize(K);
+  std::printf("  second factorization (analysis reused, %d analyses): %.3f s wall, %.3f s CPU\n", linear->analyses(),
+              seconds_since(t0), cpu_since(c0));
+  return 0;
+}
+
+int bench_assembly(int n, unsigned max_threads) {
   mesh::BlockSpec spec;
   spec.high = Eigen::Vector3d(100, 100, 50);  // [mm]
   spec.n = {n, n, std::max(1, n / 2)};
@@ -65,5 +182,16 @@ int main(int argc, char** argv) {
   std::printf("Newton: %s in %d iterations, %.3f s (linear solver %s, %d analyses)\n",
               solver::to_string(result.outcome).c_str(), result.iterations, seconds_since(t0),
               linear->method().c_str(), linear->analyses());
+  std::printf("  %s\n", linear->analysis_report().c_str());
   return result.converged() ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc > 1 && std::strcmp(argv[1], "factor") == 0)
+    return bench_factor(argc > 2 ? std::atoi(argv[2]) : 20, argc > 3 ? argv[3] : "default,amd,metis,nesdis");
+  const int n = argc > 1 ? std::atoi(argv[1]) : 20;
+  const unsigned max_threads = argc > 2 ? std::atoi(argv[2]) : std::max(1u, std::thread::hardware_concurrency());
+  return bench_assembly(n, max_threads);
 }

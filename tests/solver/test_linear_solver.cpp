@@ -3,6 +3,8 @@
 // Tolerance: max |x - x_exact| <= 1e-10 max |x_exact| on systems of 900 unknowns.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <memory>
 #include <random>
 
 #include "solver/linear_solver.hpp"
@@ -132,6 +134,37 @@ TEST(LinearSolver, IndefiniteMatrixFallsBackToLu) {
   solver->factorize(A);
   EXPECT_NE(solver->method().find("umfpack-lu"), std::string::npos);
   EXPECT_LE(relative_error(solver->solve(A * x_exact), x_exact), 1e-10);
+}
+
+TEST(LinearSolver, FactorDoesNotDependOnTheCallersMatrix) {
+  // The caller's matrix changes and dies after factorize(): solve() still solves the factorized
+  // system (UMFPACK's refinement must not read the caller's storage), for both kinds.
+  const Sparse A = grid_operator(30, 0.1, 0.8);
+  const Sparse S = grid_operator(30, 0.0, 0.0);
+  const Eigen::VectorXd x_exact = random_vector(900, 8);
+  auto lu = make_linear_solver(LinearSolverKind::lu);
+  auto llt = make_linear_solver(LinearSolverKind::cholesky);
+  {
+    auto temporary = std::make_unique<Sparse>(A);
+    lu->factorize(*temporary);
+    *temporary *= 3.0;  // modified, then destroyed
+    auto temporary_spd = std::make_unique<Sparse>(S);
+    llt->factorize(*temporary_spd);
+    *temporary_spd *= 3.0;
+  }
+  EXPECT_LE(relative_error(lu->solve(A * x_exact), x_exact), 1e-10);
+  EXPECT_LE(relative_error(llt->solve(S * x_exact), x_exact), 1e-10);
+}
+
+TEST(LinearSolver, AnalysisReportNamesOrderingAndBlas) {
+  auto llt = make_linear_solver(LinearSolverKind::cholesky);
+  EXPECT_EQ(llt->analysis_report(), "");
+  llt->factorize(grid_operator(30, 0.0, 0.0));
+  const std::string report = llt->analysis_report();
+  EXPECT_EQ(report.rfind("cholmod supernodal, ordering ", 0), 0u) << report;
+  EXPECT_NE(report.find("nnz(L)"), std::string::npos) << report;
+  EXPECT_NE(report.find("BLAS"), std::string::npos) << report;
+  std::printf("%s\n", report.c_str());
 }
 
 }  // namespace

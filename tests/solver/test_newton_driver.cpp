@@ -3,11 +3,15 @@
 // (|x - 1| > 1.39 diverges): without line search the driver must report "diverged" (residual
 // growing twice), with line search it must converge to the root within 1e-9 mm and apply at least
 // one step < 1. A residual that is NaN away from the root is treated like a material failure.
+// Modified Newton (tangent reuse) from x0 = 1.5 keeps the slope k0 = 1 / (1 + 0.5^2) = 0.8, so its
+// error contracts by |1 - r'(1) / k0| = 0.25 per iteration: the observed residual ratio must tend to
+// 0.25 (within 0.01) with one factorization.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "solver/newton.hpp"
+#include "tests/solver/counting_linear_solver.hpp"
 
 namespace cushion::solver {
 namespace {
@@ -72,6 +76,37 @@ TEST(NewtonDriver, NanResidualIsBacktrackedLikeAFailure) {
   const NewtonResult result = solve_newton(problem, *lu, x, options);
   ASSERT_TRUE(result.converged()) << result.message;
   EXPECT_NEAR(x(0), 1.0, 1e-9);
+}
+
+TEST(NewtonDriver, TangentReuseContractsAtTheAnalyticLinearRate) {
+  ArctanProblem problem;
+  test::CountingLinearSolver lu(LinearSolverKind::lu);
+  Eigen::VectorXd x = Eigen::VectorXd::Constant(1, 1.5);
+  NewtonOptions options;
+  options.residual_tolerance = 1e-12;
+  options.max_iterations = 40;
+  options.tangent_reuse.enabled = true;
+  TangentFactor factor;
+  const NewtonResult result = solve_newton(problem, lu, x, options, {}, &factor);
+  ASSERT_TRUE(result.converged()) << result.message;
+  EXPECT_NEAR(x(0), 1.0, 1e-9);
+  EXPECT_EQ(lu.factorizations, 1);
+  EXPECT_TRUE(factor.current);
+  const auto& h = result.history;
+  ASSERT_GE(h.size(), 6u);
+  const double rate = h[h.size() - 1].residual_max / h[h.size() - 2].residual_max;
+  EXPECT_NEAR(rate, 0.25, 0.01);
+  std::printf("modified Newton on atan: %d iterations, last residual ratio %.4f (analytic 0.25)\n",
+              result.iterations, rate);
+
+  // Full Newton from the same start: a factorization per correction, quadratic (fewer iterations).
+  test::CountingLinearSolver lu_full(LinearSolverKind::lu);
+  Eigen::VectorXd y = Eigen::VectorXd::Constant(1, 1.5);
+  options.tangent_reuse.enabled = false;
+  const NewtonResult full = solve_newton(problem, lu_full, y, options);
+  ASSERT_TRUE(full.converged());
+  EXPECT_EQ(lu_full.factorizations, full.iterations);
+  EXPECT_LT(full.iterations, result.iterations);
 }
 
 }  // namespace

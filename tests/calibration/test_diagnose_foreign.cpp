@@ -1,0 +1,155 @@
+// diagnose.hpp on FOREIGN campaigns (foreign_campaign.hpp): each hides ONE effect written outside cushion's
+// library, in another functional form and with other parameter values (power-law air dashpot, Bouc-Wen
+// hysteresis, exponential damage on the maximum strain, exponentially preload-dependent Prony moduli,
+// fractional f^0.5 damping), plus a base-mismatch control (4-term truth hyperfoam) and a plain control.
+// 3 rates (30/120/480 mm/min), 2 preloads (25/40 %), 8 frequencies, 0.5 % + 0.002 N noise; the model side
+// is the truth base (hyperfoam + Prony), as in test_diagnose.cpp. Criteria:
+//  - effect cases: the baseline fails beyond noise; the winner's LEADING member and the best single are of the
+//    right family; the winner lowers the worst test's error/noise by at least 2x; when it does not reach the
+//    noise level the verdict says which tests remain beyond noise (our library need not represent the foreign
+//    form exactly, it must name the family and be honest about the rest);
+//  - base mismatch, and fractional damping (linear viscoelasticity, which the base Prony series represents):
+//    no effect is named; the verdict points at the base calibration; the base refit alone (hyperfoam and
+//    Prony moduli) reaches the noise level (error/noise <= 1.5);
+//  - control: "No effect is missing".
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <iostream>
+#include <sstream>
+
+#include "foreign_campaign.hpp"
+#include "material/calibration/diagnose.hpp"
+
+namespace cc = cushion::calibration;
+namespace cf = cushion::foreign;
+namespace fs = std::filesystem;
+
+namespace {
+
+double worst_ratio(const cc::CompareResult& r) {
+  double w = 0.0;
+  for (const auto& t : r.tests) w = std::max(w, t.noise_ratio());
+  return w;
+}
+
+struct ForeignRun {
+  cc::Diagnosis d;
+  cf::ForeignCampaign campaign;
+};
+
+ForeignRun run(cf::ForeignCase c, int max_iterations = 12, std::vector<std::string> candidates = {}) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const fs::path dir = fs::temp_directory_path() / ("cushion_test_foreign_" + cf::to_string(c));
+  ForeignRun r;
+  r.campaign = cf::make_foreign_campaign(c, dir);
+  cc::DiagnoseOptions o;
+  o.pairs_from = 2;
+  o.max_iterations = max_iterations;
+  o.candidates = std::move(candidates);
+  std::ostringstream log;
+  r.d = cc::diagnose(r.campaign.truth_base, cc::read_campaign(r.campaign.manifest), o, log);
+  fs::remove_all(dir);
+  // One line per case for the record (not a timed test).
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::cout << "foreign " << cf::to_string(c) << ": baseline worst error/noise " << worst_ratio(r.d.baseline);
+  if (r.d.winner)
+    std::cout << ", winner " << r.d.candidates[*r.d.winner].name() << " -> "
+              << worst_ratio(r.d.candidates[*r.d.winner].compare);
+  if (r.d.base_refit) std::cout << ", base refit -> " << worst_ratio(r.d.base_refit->compare);
+  std::cout << ", " << s << " s\n  " << r.d.verdict << "\n";
+  return r;
+}
+
+const cc::CandidateFit* best_single(const cc::Diagnosis& d) {
+  for (const auto& c : d.candidates)
+    if (c.kinds.size() == 1) return &c;
+  return nullptr;
+}
+
+bool in(const std::vector<std::string>& v, const std::string& s) { return std::find(v.begin(), v.end(), s) != v.end(); }
+
+/// The winner must lower the worst test's error/noise by `fall`.
+void expect_family_first(cf::ForeignCase c, const std::vector<std::string>& family, double fall = 2.0) {
+  const ForeignRun r = run(c);
+  const cc::Diagnosis& d = r.d;
+  EXPECT_FALSE(d.at_noise_level);
+  ASSERT_TRUE(d.winner.has_value()) << d.verdict;
+  const cc::CandidateFit& w = d.candidates[*d.winner];
+  EXPECT_TRUE(in(family, w.kinds.front())) << "winner " << w.name();
+  const cc::CandidateFit* single = best_single(d);
+  ASSERT_NE(single, nullptr);
+  EXPECT_TRUE(in(family, single->kinds.front())) << "best single " << single->name();
+  EXPECT_LT(worst_ratio(w.compare), worst_ratio(d.baseline) / fall);
+  if (!d.winner_at_noise_level) {
+    EXPECT_NE(d.verdict.find("still beyond noise"), std::string::npos) << d.verdict;
+  }
+  EXPECT_TRUE(d.fragment.contains("effects"));
+}
+
+}  // namespace
+
+TEST(DiagnoseForeign, PowerLawAirDashpotIsNamedAsRateDependentDamping) {
+  // q = 0.6 rate exponent, (1/(1-e))^1.5: between a linear dashpot and friction; both of our viscous
+  // (rate-dependent, linear-dashpot) effects are the right family.
+  expect_family_first(cf::ForeignCase::power_law_dashpot, {"pneumatic", "stiffness_damping"});
+}
+
+TEST(DiagnoseForeign, BoucWenHysteresisIsNamedAsFriction) {
+  expect_family_first(cf::ForeignCase::bouc_wen, {"friction"});
+}
+
+TEST(DiagnoseForeign, ExponentialDamageIsNamedAsMullins) {
+  expect_family_first(cf::ForeignCase::exponential_damage, {"mullins"});
+}
+
+TEST(DiagnoseForeign, ExponentialPreloadPronyIsNamedAsStrainDependentProny) {
+  expect_family_first(cf::ForeignCase::exponential_prony, {"strain_dependent_prony"});
+}
+
+/// No effect named; the verdict points at the base; the base refit alone reaches the noise level.
+void expect_base_explains(cf::ForeignCase c) {
+  const ForeignRun r = run(c);
+  const cc::Diagnosis& d = r.d;
+  EXPECT_FALSE(d.at_noise_level);
+  EXPECT_FALSE(d.winner.has_value()) << d.candidates.front().name();
+  EXPECT_TRUE(d.fragment.is_null());
+  EXPECT_NE(d.verdict.find("base calibration"), std::string::npos) << d.verdict;
+  ASSERT_TRUE(d.base_refit.has_value());
+  EXPECT_LE(worst_ratio(d.base_refit->compare), 1.5);
+}
+
+TEST(DiagnoseForeign, FractionalDampingIsExplainedByTheBasePronySeries) {
+  // c D^0.5 (loss and storage growing like f^0.5) is LINEAR viscoelasticity: a Prony series spanning the
+  // decades of the tests represents it, so the honest answer is "recalibrate the base", not a new effect
+  // (before the base-refit reference, diagnose named friction or pneumatic damping here).
+  expect_base_explains(cf::ForeignCase::fractional_damping);
+}
+
+TEST(DiagnoseForeign, BaseMismatchInventsNoEffect) {
+  expect_base_explains(cf::ForeignCase::base_off);  // a 4th hyperfoam term the truth has and the model lacks
+}
+
+TEST(DiagnoseForeign, ControlSaysNoEffectIsMissing) {
+  const ForeignRun r = run(cf::ForeignCase::control);
+  EXPECT_TRUE(r.d.at_noise_level);
+  EXPECT_FALSE(r.d.winner.has_value());
+  EXPECT_NE(r.d.verdict.find("No effect is missing"), std::string::npos) << r.d.verdict;
+}
+
+TEST(DiagnoseForeign, CandidateThatDoesNotConvergeIsReportedAndTheRestStillRuns) {
+  // One Ceres iteration: the refits stop before convergence. Each says so in a warning naming the candidate;
+  // the baseline, the ranking and a verdict are still reported.
+  const ForeignRun r = run(cf::ForeignCase::bouc_wen, 1, {"friction", "stiffness_damping"});
+  const cc::Diagnosis& d = r.d;
+  bool warned = false;
+  for (const auto& w : d.warnings)
+    if (w.find("candidate ") != std::string::npos && w.find("did not converge within 1 iterations") != std::string::npos)
+      warned = true;
+  EXPECT_TRUE(warned) << ::testing::PrintToString(d.warnings);
+  EXPECT_EQ(d.baseline.tests.size(), 5u);
+  ASSERT_GE(d.candidates.size(), 2u);
+  for (const auto& c : d.candidates) EXPECT_EQ(c.compare.tests.size(), 5u) << c.name();
+  EXPECT_FALSE(d.verdict.empty());
+}
