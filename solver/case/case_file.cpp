@@ -203,7 +203,19 @@ MeshSpec parse_mesh(const Obj& o) {
   return m;
 }
 
+/// {"type": "sine", "frequency_Hz": f, "start_s"?: t0, "time"?: ...} (case_spec.hpp).
+Amplitude parse_sine_amplitude(const Obj& o) {
+  Amplitude a;
+  a.kind = Amplitude::Kind::sine;
+  a.frequency = o.positive("frequency_Hz");
+  if (o.has("start_s")) a.start = o.number("start_s");
+  if (a.start < 0.0) o.fail("start_s", "must be >= 0, found " + io::format_double(a.start));
+  a.total_time = o.choice_or("time", {"step", "total"}, "step") == "total";
+  return a;
+}
+
 Amplitude parse_amplitude(const Obj& o) {
+  if (o.has("type")) o.choice("type", {"tabular"});  // "sine" is dispatched by the caller
   Amplitude a;
   a.time = o.numbers("time_s", 1, 1000000);
   a.value = o.numbers("value", 1, 1000000);
@@ -222,6 +234,7 @@ Amplitude parse_amplitude(const Obj& o) {
 IncrementSpec parse_increment(const Obj* o, double period) {
   IncrementSpec inc{period, 1e-5 * period, period, 100};
   if (!o) return inc;
+  if (o->has("fixed")) inc.fixed = o->at("fixed").boolean();
   inc.initial = o->positive_or("initial_s", period);
   inc.min = o->positive_or("min_s", std::min(1e-5 * period, inc.initial));
   inc.max = o->positive_or("max_s", period);
@@ -395,12 +408,41 @@ ContactSpec parse_contact(const Obj& o, const CaseSpec& spec, const StepSpec& st
   return c;
 }
 
+/// "damping" and "newmark" of a dynamic step (case_spec.hpp).
+DynamicSpec parse_dynamic(const Obj& o) {
+  DynamicSpec d;
+  d.key = o.here();
+  auto non_negative = [](const Obj& x, const std::string& key) {
+    const double v = x.number(key);
+    if (!(v >= 0.0)) x.fail(key, "must be >= 0, found " + io::format_double(v));
+    return v;
+  };
+  if (o.has("damping")) {
+    const Obj damping(o.raw("damping"), o.ctx(), o.path("damping"), {"rayleigh_alpha_1_s", "rayleigh_beta_s"});
+    if (damping.has("rayleigh_alpha_1_s")) d.rayleigh_alpha = non_negative(damping, "rayleigh_alpha_1_s");
+    if (damping.has("rayleigh_beta_s")) d.rayleigh_beta = non_negative(damping, "rayleigh_beta_s");
+  }
+  if (o.has("newmark")) {
+    const Obj newmark(o.raw("newmark"), o.ctx(), o.path("newmark"), {"gamma", "beta"});
+    if (newmark.has("gamma")) d.gamma = newmark.number("gamma");
+    if (!(d.gamma >= 0.5 && d.gamma <= 1.5))
+      newmark.fail("gamma", "must be in [0.5, 1.5] (gamma < 1/2 amplifies the response: unstable), found " +
+                                io::format_double(d.gamma));
+    const double beta_min = 0.25 * (d.gamma + 0.5) * (d.gamma + 0.5);
+    d.beta = newmark.has("beta") ? newmark.number("beta") : beta_min;
+    if (!(d.beta >= beta_min * (1.0 - 1e-12)) || d.beta > 1.0)
+      newmark.fail("beta", "must be in [(gamma + 1/2)^2 / 4, 1] = [" + io::format_double(beta_min) +
+                               ", 1] for unconditional stability, found " + io::format_double(d.beta));
+  }
+  return d;
+}
+
 StepSpec parse_step(const Obj& o, const CaseSpec& spec) {
   StepSpec step;
   step.name = o.string("name");
   const std::string type = o.at("type").string();
   if (type == "steady_state") {  // a linear perturbation step: solver/dynamics/steady_state_spec.hpp
-    for (const char* k : {"long_term", "time_period_s", "increment", "boundary", "contact", "output"})
+    for (const char* k : {"long_term", "time_period_s", "increment", "boundary", "contact", "output", "damping", "newmark"})
       if (o.has(k)) o.fail(k, "does not apply to a \"steady_state\" step (see its \"steady_state\" object)");
     step.type = StepSpec::Type::steady_state;
     step.steady_state = dynamics::parse_steady_state_spec(
@@ -410,14 +452,20 @@ StepSpec parse_step(const Obj& o, const CaseSpec& spec) {
     return step;
   }
   if (o.has("steady_state")) o.fail("steady_state", "applies to \"steady_state\" steps only");
-  step.type = o.choice("type", {"static", "visco"}) == "visco" ? StepSpec::Type::visco : StepSpec::Type::static_;
+  const std::string kind = o.choice("type", {"static", "visco", "dynamic"});
+  step.type = kind == "visco" ? StepSpec::Type::visco : kind == "dynamic" ? StepSpec::Type::dynamic : StepSpec::Type::static_;
+  if (step.type == StepSpec::Type::dynamic) step.dynamic = parse_dynamic(o);
+  for (const char* k : {"damping", "newmark"})
+    if (o.has(k) && step.type != StepSpec::Type::dynamic) o.fail(k, "applies to \"dynamic\" steps only");
   if (o.has("long_term")) {
     if (step.type != StepSpec::Type::static_) o.fail("long_term", "applies to \"static\" steps only");
     step.long_term = o.at("long_term").boolean();
   }
   step.period = o.positive("time_period_s");
   if (o.has("increment")) {
-    const Obj inc(o.raw("increment"), o.ctx(), o.path("increment"), {"initial_s", "min_s", "max_s", "max_increments"});
+    std::vector<std::string> keys{"initial_s", "min_s", "max_s", "max_increments"};
+    if (step.type == StepSpec::Type::dynamic) keys.push_back("fixed");
+    const Obj inc(o.raw("increment"), o.ctx(), o.path("increment"), keys);
     step.increment = parse_increment(&inc, step.period);
   } else {
     step.increment = parse_increment(nullptr, step.period);
@@ -512,15 +560,20 @@ CaseSpec parse_case_json(const std::string& text, const std::filesystem::path& f
   if (top.has("amplitudes")) {
     const json& amplitudes = top.raw("amplitudes");
     if (!amplitudes.is_object()) top.fail("amplitudes", "must be an object {\"name\": {...}, ...}");
-    for (const auto& [name, value] : amplitudes.items())
-      spec.amplitudes[name] = parse_amplitude(Obj(value, ctx, "amplitudes." + name, {"time_s", "value", "time"}));
+    for (const auto& [name, value] : amplitudes.items()) {
+      const std::string path = "amplitudes." + name;
+      const bool sine = value.is_object() && value.contains("type") &&
+                        io::JsonNode(value, ctx.source, path).at("type").choice({"tabular", "sine"}) == "sine";
+      spec.amplitudes[name] = sine ? parse_sine_amplitude(Obj(value, ctx, path, {"type", "frequency_Hz", "start_s", "time"}))
+                                   : parse_amplitude(Obj(value, ctx, path, {"type", "time_s", "value", "time"}));
+    }
   }
   const io::JsonNode steps = top.at("steps");
   const std::size_t n = steps.expect_array(1, 10000);
   for (std::size_t i = 0; i < n; ++i)
     spec.steps.push_back(parse_step(Obj(top.raw("steps")[i], ctx, "steps[" + std::to_string(i) + "]",
                                         {"name", "type", "long_term", "time_period_s", "increment", "boundary",
-                                         "contact", "output", "steady_state"}),
+                                         "contact", "output", "steady_state", "damping", "newmark"}),
                                     spec));
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t k = 0; k < i; ++k)

@@ -22,15 +22,27 @@
 ///   "amplitudes"?: {"name": {"time_s": [t0, t1, ...], "value": [a0, a1, ...],
 ///                            "time"?: "step" | "total" = "step"}}
 ///            piecewise linear in time, constant outside the table (ABAQUS *AMPLITUDE, TIME=STEP TIME)
+///                  or {"type": "sine", "frequency_Hz": f, "start_s"? = 0, "time"?: "step" | "total"}
+///            a(t) = sin(2 pi f (t - start_s)) for t >= start_s, 0 before (exact velocity and
+///            acceleration for dynamic steps; a harmonic base motion starts from rest at start_s)
 ///   "steps": [ {                                                 run in order, total time accumulates
 ///     "name": "load",
 ///     "type": "static" | "visco",        static: rate-independent; visco: viscous relaxation in time
+///                                        "dynamic": implicit Newmark time stepping (inertia, damping)
+///                                        with the keys of static/visco steps plus those below
 ///                                        "steady_state": frequency sweep about the previous step's end
 ///                                        state; its keys: solver/dynamics/steady_state_spec.hpp
 ///     "long_term"?: false,               static only: fully relaxed (long-term) moduli (*STATIC, LONG TERM)
 ///     "time_period_s": T,                > 0 [s]
-///     "increment"?: {"initial_s"? = T, "min_s"? = 1e-5 T, "max_s"? = T, "max_increments"? = 100},
-///                                        0 < min_s <= initial_s <= max_s, initial_s <= T
+///     "increment"?: {"initial_s"? = T, "min_s"? = 1e-5 T, "max_s"? = T, "max_increments"? = 100,
+///                    "fixed"? = false},  0 < min_s <= initial_s <= max_s, initial_s <= T
+///                                        fixed (dynamic steps only): every increment is initial_s
+///                                        (shortened only to end on amplitude corners / frame times),
+///                                        no growth, no cut-back: a failed increment ends the run
+///     "damping"?: {"rayleigh_alpha_1_s"? = 0, "rayleigh_beta_s"? = 0},   dynamic only, both >= 0:
+///                                        C = alpha M + beta K_R(0) (solver/analysis/dynamic_step.hpp)
+///     "newmark"?: {"gamma"? = 0.5, "beta"? = 0.25},   dynamic only; gamma >= 1/2 and
+///                                        beta >= (gamma + 1/2)^2 / 4 (unconditionally stable)
 ///     "boundary": [                      the complete list for this step (nothing is inherited)
 ///        {"set": "top", "dof": "x"|"y"|"z"|"xy"|"xz"|"yz"|"xyz", "value_mm": -60, "amplitude"?: "ramp"},
 ///            prescribed displacement [mm] of every listed component, relative to the reference
@@ -111,13 +123,22 @@ struct MeshSpec {
   HexFormulation formulation = HexFormulation::full;  ///< hex8 elements only
 };
 
-/// Piecewise-linear amplitude a(t) [-]; constant beyond the first and last points.
+/// Amplitude a(t) [-]: piecewise linear (tabular, constant beyond the first and last points) or a
+/// sine a(t) = sin(2 pi f (t - start)) for t >= start, 0 before.
 struct Amplitude {
-  std::vector<double> time;   ///< [s], strictly increasing
-  std::vector<double> value;  ///< [-], same size as time
+  std::vector<double> time;   ///< [s], strictly increasing (tabular)
+  std::vector<double> value;  ///< [-], same size as time (tabular)
   bool total_time = false;    ///< false: t is the step time; true: the total time
-  /// a(t) by linear interpolation [-]; t in [s] on the amplitude's own clock.
+  enum class Kind { tabular, sine } kind = Kind::tabular;
+  double frequency = 0.0;     ///< sine: f [Hz] > 0
+  double start = 0.0;         ///< sine: start time [s] on the amplitude's clock
+  /// a(t) [-]; t in [s] on the amplitude's own clock (tabular: linear interpolation).
   double at(double t) const;
+  /// da/dt [1/s]: sine exact; tabular the slope of the segment ending at t (left derivative; 0 at and
+  /// before the first point and after the last).
+  double rate(double t) const;
+  /// d2a/dt2 [1/s^2]: sine exact; tabular 0 (the velocity jumps at corners are not represented).
+  double second_rate(double t) const;
 };
 
 /// One boundary condition of a step. Components not listed in `dofs` are free.
@@ -136,10 +157,29 @@ struct BoundarySpec {
 double prescribed_value(const BoundarySpec& bc, const std::map<std::string, Amplitude>& amplitudes,
                         double start_value, double t_step, double period, double t_start);
 
+/// Prescribed displacement [mm], velocity [mm/s] and acceleration [mm/s^2] of one component.
+struct PrescribedMotion {
+  double u = 0.0, v = 0.0, a = 0.0;
+};
+/// As prescribed_value, with the time derivatives of the history (Amplitude::rate, second_rate; the
+/// default linear ramp: constant velocity over the step, zero acceleration; 0 for symmetry/fixed).
+PrescribedMotion prescribed_motion(const BoundarySpec& bc, const std::map<std::string, Amplitude>& amplitudes,
+                                   double start_value, double t_step, double period, double t_start);
+
 /// ABAQUS-style automatic increment control of a step [s].
 struct IncrementSpec {
   double initial = 0.0, min = 0.0, max = 0.0;  ///< [s]
   int max_increments = 100;
+  bool fixed = false;  ///< dynamic steps: constant increment `initial`, no growth, no cut-back
+};
+
+/// Keys of a "dynamic" step (Newmark time integration, solver/analysis/dynamic_step.hpp).
+struct DynamicSpec {
+  double rayleigh_alpha = 0.0;  ///< mass-proportional damping [1/s]
+  double rayleigh_beta = 0.0;   ///< stiffness-proportional damping [s]
+  double gamma = 0.5;           ///< Newmark gamma [-]
+  double beta = 0.25;           ///< Newmark beta [-]
+  std::string key;              ///< "steps[2]", for messages
 };
 
 enum class HistoryQuantity { U1, U2, U3, RF1, RF2, RF3 };
@@ -161,7 +201,7 @@ struct OutputSpec {
 
 struct StepSpec {
   std::string name;
-  enum class Type { static_, visco, steady_state } type = Type::static_;
+  enum class Type { static_, visco, steady_state, dynamic } type = Type::static_;
   bool long_term = false;     ///< static only: long-term (relaxed) response
   double period = 0.0;        ///< time period [s]
   IncrementSpec increment;
@@ -169,6 +209,7 @@ struct StepSpec {
   std::vector<ContactSpec> contact;  ///< rigid indenters (solver/contact/contact_spec.hpp)
   OutputSpec output;
   dynamics::SteadyStateSpec steady_state;  ///< type steady_state only (solver/dynamics/steady_state_spec.hpp)
+  DynamicSpec dynamic;                     ///< type dynamic only
 };
 
 struct SolverSpec {

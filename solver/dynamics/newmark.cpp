@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include <Eigen/SparseCholesky>
+
 namespace cushion::solver::dynamics {
 namespace {
 
@@ -31,45 +33,67 @@ NewmarkIntegrator::NewmarkIntegrator(const Assembler& assembler, SparseMatrix M_
   Cff_ = free_block(C_, assembler.dofs());
 }
 
+NewmarkUpdate::NewmarkUpdate(const DofMap& dofs, NewmarkParameters p, const Kinematics& start,
+                             const Kinematics& prescribed, double dt)
+    : dofs_(dofs), p_(p), start_(start), prescribed_(prescribed), dt_(dt), c_a_(1.0 / (p.beta * dt * dt)),
+      c_v_(p.gamma / (p.beta * dt)),
+      a_pred_(-(dt * start.v) * c_a_ - (0.5 / p.beta - 1.0) * start.a) {}
+
+Kinematics NewmarkUpdate::at(const Eigen::VectorXd& u) const {
+  Kinematics k{u, prescribed_.v, prescribed_.a};
+  for (int d : dofs_.free_dofs()) {
+    k.a(d) = c_a_ * (u(d) - start_.u(d)) + a_pred_(d);
+    k.v(d) = start_.v(d) + dt_ * ((1.0 - p_.gamma) * start_.a(d) + p_.gamma * k.a(d));
+  }
+  return k;
+}
+
+Eigen::VectorXd NewmarkUpdate::predictor() const {
+  Eigen::VectorXd u = start_.u + dt_ * start_.v + 0.5 * dt_ * dt_ * start_.a;
+  for (int d : dofs_.constrained_dofs()) u(d) = prescribed_.u(d);
+  return u;
+}
+
+ExtraTerm NewmarkIntegrator::inertia_term(const NewmarkUpdate& update) const {
+  return [this, &update](const Eigen::VectorXd& u, Eigen::VectorXd& r_full, SparseMatrix* K) {
+    const Kinematics k = update.at(u);
+    r_full += M_ * k.a + C_ * k.v;
+    if (K) *K += update.c_a() * Mff_ + update.c_v() * Cff_;
+  };
+}
+
+Eigen::VectorXd NewmarkIntegrator::initial_acceleration(const Eigen::VectorXd& r_free, const Eigen::VectorXd& v,
+                                                        const Eigen::VectorXd& a_prescribed) const {
+  const DofMap& dofs = assembler_.dofs();
+  Eigen::VectorXd a_c = Eigen::VectorXd::Zero(a_prescribed.size());
+  for (int d : dofs.constrained_dofs()) a_c(d) = a_prescribed(d);
+  const Eigen::VectorXd rhs = -(r_free + dofs.gather_free(M_ * a_c + C_ * v));
+  Eigen::VectorXd a = a_c;
+  if (rhs.size() == 0) return a;
+  Eigen::SimplicialLDLT<SparseMatrix> ldlt(Mff_);
+  if (ldlt.info() != Eigen::Success || (ldlt.vectorD().array() <= 0.0).any())
+    throw std::runtime_error("the mass matrix of the free DOFs is not positive definite");
+  dofs.scatter_free(ldlt.solve(rhs), a);
+  return a;
+}
+
 NewtonResult NewmarkIntegrator::step(StateStore& state, LinearSolver& linear, Kinematics& k, double dt,
                                      const Kinematics& prescribed, const Eigen::VectorXd& f_ext,
                                      const NewtonOptions& options, const std::vector<ExtraTerm>& extra) {
   if (!(dt > 0.0)) throw std::invalid_argument("Newmark: dt must be > 0");
   const DofMap& dofs = assembler_.dofs();
-  const double b = p_.beta, g = p_.gamma;
-  const double c_a = 1.0 / (b * dt * dt), c_v = g / (b * dt);
-
-  // Full vectors at t + dt for a given u: free entries by Newmark, constrained ones prescribed.
-  Eigen::VectorXd a_new = prescribed.a, v_new = prescribed.v;
-  const Eigen::VectorXd a_pred = -(dt * k.v) * c_a - (0.5 / b - 1.0) * k.a;  // a_{n+1} - c_a (u - u_n)
-  auto kinematics_at = [&](const Eigen::VectorXd& u) {
-    for (int d : dofs.free_dofs()) {
-      a_new(d) = c_a * (u(d) - k.u(d)) + a_pred(d);
-      v_new(d) = k.v(d) + dt * ((1.0 - g) * k.a(d) + g * a_new(d));
-    }
-  };
-  const SparseMatrix K_dyn = c_a * Mff_ + c_v * Cff_;
-
+  const NewmarkUpdate update(dofs, p_, k, prescribed, dt);
   Eigen::VectorXd u_target = k.u;
   for (int d : dofs.constrained_dofs()) u_target(d) = prescribed.u(d);
   EquilibriumProblem problem(assembler_, state, k.u, u_target, f_ext, dt);
   for (const auto& term : extra) problem.add_term(term);
-  problem.add_term([&](const Eigen::VectorXd& u, Eigen::VectorXd& r_full, SparseMatrix* K) {
-    kinematics_at(u);
-    r_full += M_ * a_new + C_ * v_new;
-    if (K) *K += K_dyn;
-  });
-  // Predictor: constant-acceleration extrapolation of the free DOFs.
-  Eigen::VectorXd u0 = k.u + dt * k.v + 0.5 * dt * dt * k.a;
-  Eigen::VectorXd x = dofs.gather_free(u0);
+  problem.add_term(inertia_term(update));
+  Eigen::VectorXd x = dofs.gather_free(update.predictor());
   NewtonResult r = solve_newton(problem, linear, x, options);
   if (!r.converged()) return r;
-  const Eigen::VectorXd& u = problem.u();
-  kinematics_at(u);
-  force_ = problem.f_int() + M_ * a_new + C_ * v_new;
-  k.u = u;
-  k.v = v_new;
-  k.a = a_new;
+  Kinematics next = update.at(problem.u());
+  force_ = problem.f_int() + M_ * next.a + C_ * next.v;
+  k = std::move(next);
   return r;
 }
 

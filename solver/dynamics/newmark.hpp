@@ -25,6 +25,30 @@ struct Kinematics {
   Eigen::VectorXd u, v, a;
 };
 
+/// Newmark kinematics of one step t -> t + dt from `start` (all DOFs at t) and `prescribed` (u, v, a
+/// at t + dt, constrained entries used): for a trial full displacement u at t + dt,
+///   a = c_a (u - u_n) - c_a dt v_n - (1/(2 beta) - 1) a_n,  v = v_n + dt ((1 - gamma) a_n + gamma a)
+/// on the free DOFs, c_a = 1/(beta dt^2) [1/s^2]; the constrained DOFs take the prescribed values.
+class NewmarkUpdate {
+ public:
+  NewmarkUpdate(const DofMap& dofs, NewmarkParameters p, const Kinematics& start, const Kinematics& prescribed,
+                double dt);
+  /// u [mm], v [mm/s], a [mm/s^2] at t + dt (full) for the full displacement u [mm].
+  Kinematics at(const Eigen::VectorXd& u) const;
+  /// Predictor [mm], full: free DOFs u_n + dt v_n + dt^2/2 a_n (constant acceleration), constrained prescribed.
+  Eigen::VectorXd predictor() const;
+  double c_a() const { return c_a_; }  ///< d a / d u on the free DOFs [1/s^2]
+  double c_v() const { return c_v_; }  ///< d v / d u on the free DOFs = gamma / (beta dt) [1/s]
+
+ private:
+  const DofMap& dofs_;
+  NewmarkParameters p_;
+  const Kinematics& start_;
+  const Kinematics& prescribed_;
+  double dt_, c_a_, c_v_;
+  Eigen::VectorXd a_pred_;  ///< a - c_a (u - u_n) on the free DOFs [mm/s^2]
+};
+
 /// Steps a nonlinear model through time with one assembler (the static analysis' DOF map).
 class NewmarkIntegrator {
  public:
@@ -41,6 +65,20 @@ class NewmarkIntegrator {
 
   /// f_int + M a + C v of the last converged step [N], full: reactions at the constrained DOFs.
   const Eigen::VectorXd& support_force() const { return force_; }
+
+  /// The inertia and damping term M a + C v [N] of `update` (tangent c_a M_ff + c_v C_ff [N/mm]) for
+  /// EquilibriumProblem::add_term; `update` must outlive the term.
+  ExtraTerm inertia_term(const NewmarkUpdate& update) const;
+  /// M a [N] and C v [N] on all DOFs.
+  Eigen::VectorXd inertia_force(const Eigen::VectorXd& a) const { return M_ * a; }
+  Eigen::VectorXd damping_force(const Eigen::VectorXd& v) const { return C_ * v; }
+  /// Full accelerations in equilibrium at the start of a step [mm/s^2]: on the free DOFs
+  /// M_ff a_f = -(r_f + [M a_c + C v]_f) with r_f = f_int + extra - f_ext at the free DOFs [N],
+  /// a_c the constrained entries of `a_prescribed` (full) and v the full velocities [mm/s].
+  /// Throws std::runtime_error if M_ff is not positive definite (a density missing).
+  Eigen::VectorXd initial_acceleration(const Eigen::VectorXd& r_free, const Eigen::VectorXd& v,
+                                       const Eigen::VectorXd& a_prescribed) const;
+  const NewmarkParameters& parameters() const { return p_; }
 
  private:
   const Assembler& assembler_;

@@ -249,8 +249,8 @@ TEST(CaseFile, StepTypeSpecificKeysAreChecked) {
   j["steps"][0]["contact"] = nlohmann::json::array({{{"name", "platen"}, {"set", "top"}, {"colour", 1}}});
   expect_error(error_of(j, "contact"), "steps[0].contact[0]", "colour");
   j = valid_case();
-  j["steps"][0]["type"] = "dynamic";
-  expect_error(error_of(j, "dynamic"), "steps[0].type", "is not one of");
+  j["steps"][0]["type"] = "explicit";
+  expect_error(error_of(j, "explicit"), "steps[0].type", "is not one of");
 }
 
 TEST(CaseFile, MeshAndFilesAreChecked) {
