@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cstdio>
 #include <fstream>
 #include <system_error>
 
@@ -87,6 +88,12 @@ std::string join(const std::vector<std::string>& items, const std::string& separ
     if (i > 0) text += separator;
     text += items[i];
   }
+  return text;
+}
+
+std::string format_with(const char* printf_format, double x) {
+  char text[64];
+  std::snprintf(text, sizeof text, printf_format, x);
   return text;
 }
 

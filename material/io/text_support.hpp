@@ -24,4 +24,7 @@ std::string join(const std::vector<std::string>& items, const std::string& separ
 /// Shortest decimal text that reads back to exactly `x` (std::to_chars round trip).
 std::string format_double(double x);
 
+/// `x` formatted by a printf conversion for one double, e.g. format_with("%.4g", x) (at most 63 chars).
+std::string format_with(const char* printf_format, double x);
+
 }  // namespace cushion::io

@@ -91,6 +91,9 @@ RunSummary run_analysis(const LoadedCase& loaded, const RunOptions& options) {
       summary.nonzeros = static_cast<std::size_t>(s->assembler->make_matrix().nonZeros());
     }
     summary.symbolic_analyses += s->linear->analyses();
+    if (!s->linear->analysis_report().empty())
+      log << "linear solver (" << s->assembler->dofs().num_free() << " free dofs): " << s->linear->analysis_report()
+          << "\n";
     if (!s->linear->method().empty()) summary.linear_method = s->linear->method();
   }
   summary.steps = static_cast<int>(steps.size());

@@ -39,6 +39,7 @@ class TimedLinearSolver final : public LinearSolver {
   Eigen::VectorXd solve(const Eigen::VectorXd& b) override;
   std::string method() const override { return inner_->method(); }
   int analyses() const override { return inner_->analyses(); }
+  std::string analysis_report() const override { return inner_->analysis_report(); }
 
  private:
   std::unique_ptr<LinearSolver> inner_;
@@ -80,6 +81,9 @@ class AnalysisContext {
   std::vector<bool> constrained;     ///< constrained DOFs of the last step (all false before the first)
   StateStore state;                  ///< committed material state of every point
   double time = 0.0;                 ///< total time [s]
+  /// Full velocities [mm/s] at the end of a dynamic step, for a directly following dynamic step
+  /// (steady_state steps leave them; static and visco steps end at rest: empty).
+  Eigen::VectorXd v;
   /// Extra equilibrium terms that persist from step to step (e.g. contact, by "contact:<name>").
   std::map<std::string, std::shared_ptr<ResidualContributor>> contributors;
 

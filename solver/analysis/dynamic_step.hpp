@@ -2,7 +2,11 @@
 /// The "dynamic" step of a case (keys: solver/case/case_spec.hpp): implicit time integration of
 ///   f_int(u) + M a + C v = f_contact   (free DOFs; all vectors full, reference frame axes, N)
 /// by the Newmark rule (solver/dynamics/newmark.hpp; default gamma = 1/2, beta = 1/4, the
-/// average-acceleration rule: unconditionally stable, no numerical damping, energy conserving).
+/// average-acceleration rule: unconditionally stable, no numerical damping, energy conserving), or
+/// with "newmark": {"alpha": a} the Hilber-Hughes-Taylor rule (ABAQUS *DYNAMIC, ALPHA = a in
+/// [-1/3, 0]): M a_n+1 + (1 + a) G_n+1 - a G_n = 0 with G = f_int - f_contact + C v, gamma = 1/2 - a,
+/// beta = (1 - a)^2 / 4: second order, damps the high (mesh) frequencies, e.g. a = -0.05 as ABAQUS'
+/// moderate-dissipation default.
 ///
 /// Model: M the consistent mass from the section densities [t] (a material without density_kg_m3 is
 /// an InputError naming the step and the material file); C = alpha M + beta K_R(0) [N s/mm] with

@@ -15,6 +15,7 @@ IncrementLimits increment_limits(const StepSpec& step, const SolverSpec& solver)
   l.max_cutbacks = solver.max_cutbacks;
   l.cutback_factor = solver.cutback_factor;
   l.growth_factor = solver.growth_factor;
+  if (step.increment.fixed) l.growth_factor = 1.0, l.max_cutbacks = 0, l.min = l.initial;
   return l;
 }
 

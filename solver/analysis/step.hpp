@@ -3,7 +3,7 @@
 /// state, total time) from the end of the previous step to its own end and writes its output.
 /// New step types (e.g. a steady-state frequency step) implement Step and are created in
 /// make_step; extra equilibrium terms (contact, pressure) implement ResidualContributor and are
-/// attached to a QuasiStaticStep.
+/// attached to a QuasiStaticStep (contact also to a DynamicStep).
 #include <memory>
 #include <string>
 #include <vector>
@@ -72,8 +72,9 @@ class QuasiStaticStep final : public Step {
   std::vector<std::shared_ptr<ResidualContributor>> contributors_;
 };
 
-/// The Step for a case-file step (static and visco: QuasiStaticStep; steady_state: SteadyStateStep,
-/// steady_state_step.hpp).
+/// The Step for a case-file step (static and visco: QuasiStaticStep; dynamic: DynamicStep,
+/// dynamic_step.hpp; steady_state: SteadyStateStep, steady_state_step.hpp). The time-stepping steps
+/// share one increment loop (increment_loop.hpp).
 std::unique_ptr<Step> make_step(const StepSpec& spec);
 
 /// A step could not be completed (no convergence within the allowed cut-backs, too many

@@ -423,7 +423,14 @@ DynamicSpec parse_dynamic(const Obj& o) {
     if (damping.has("rayleigh_beta_s")) d.rayleigh_beta = non_negative(damping, "rayleigh_beta_s");
   }
   if (o.has("newmark")) {
-    const Obj newmark(o.raw("newmark"), o.ctx(), o.path("newmark"), {"gamma", "beta"});
+    const Obj newmark(o.raw("newmark"), o.ctx(), o.path("newmark"), {"alpha", "gamma", "beta"});
+    if (newmark.has("alpha")) {
+      d.alpha = newmark.number("alpha");
+      if (!(d.alpha >= -1.0 / 3.0 && d.alpha <= 0.0))
+        newmark.fail("alpha", "HHT alpha must be in [-1/3, 0] (ABAQUS: -0.05 moderate, -1/3 most dissipation), found " +
+                                  io::format_double(d.alpha));
+      d.gamma = 0.5 * (1.0 - 2.0 * d.alpha);
+    }
     if (newmark.has("gamma")) d.gamma = newmark.number("gamma");
     if (!(d.gamma >= 0.5 && d.gamma <= 1.5))
       newmark.fail("gamma", "must be in [0.5, 1.5] (gamma < 1/2 amplifies the response: unstable), found " +
@@ -463,8 +470,7 @@ StepSpec parse_step(const Obj& o, const CaseSpec& spec) {
   }
   step.period = o.positive("time_period_s");
   if (o.has("increment")) {
-    std::vector<std::string> keys{"initial_s", "min_s", "max_s", "max_increments"};
-    if (step.type == StepSpec::Type::dynamic) keys.push_back("fixed");
+    const std::vector<std::string> keys{"initial_s", "min_s", "max_s", "max_increments", "fixed"};
     const Obj inc(o.raw("increment"), o.ctx(), o.path("increment"), keys);
     step.increment = parse_increment(&inc, step.period);
   } else {
@@ -509,6 +515,9 @@ SolverSpec parse_solver(const Obj& o) {
   if (s.cutback_factor >= 1.0) o.fail("cutback_factor", "must be < 1");
   s.growth_factor = o.positive_or("growth_factor", s.growth_factor);
   if (s.growth_factor < 1.0) o.fail("growth_factor", "must be >= 1");
+  s.tangent_reuse = o.choice_or("newton", {"full", "modified"}, "full") == "modified";
+  s.max_contraction = o.positive_or("max_contraction", s.max_contraction);
+  if (s.max_contraction >= 1.0) o.fail("max_contraction", "must be < 1");
   return s;
 }
 
@@ -583,7 +592,8 @@ CaseSpec parse_case_json(const std::string& text, const std::filesystem::path& f
   if (top.has("solver"))
     spec.solver = parse_solver(Obj(top.raw("solver"), ctx, "solver",
                                    {"threads", "linear_solver", "residual_tolerance", "correction_tolerance",
-                                    "max_iterations", "max_cutbacks", "cutback_factor", "growth_factor"}));
+                                    "max_iterations", "max_cutbacks", "cutback_factor", "growth_factor", "newton",
+                                    "max_contraction"}));
   return spec;
 }
 

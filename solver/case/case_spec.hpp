@@ -36,12 +36,14 @@
 ///     "time_period_s": T,                > 0 [s]
 ///     "increment"?: {"initial_s"? = T, "min_s"? = 1e-5 T, "max_s"? = T, "max_increments"? = 100,
 ///                    "fixed"? = false},  0 < min_s <= initial_s <= max_s, initial_s <= T
-///                                        fixed (dynamic steps only): every increment is initial_s
+///                                        fixed: every increment is initial_s
 ///                                        (shortened only to end on amplitude corners / frame times),
 ///                                        no growth, no cut-back: a failed increment ends the run
 ///     "damping"?: {"rayleigh_alpha_1_s"? = 0, "rayleigh_beta_s"? = 0},   dynamic only, both >= 0:
 ///                                        C = alpha M + beta K_R(0) (solver/analysis/dynamic_step.hpp)
-///     "newmark"?: {"gamma"? = 0.5, "beta"? = 0.25},   dynamic only; gamma >= 1/2 and
+///     "newmark"?: {"alpha"? = 0, "gamma"? = 0.5, "beta"? = 0.25}, dynamic only; alpha: HHT in [-1/3, 0]
+///                                        (ABAQUS ALPHA; gamma, beta then default to (1 - 2 alpha)/2,
+///                                        (1 - alpha)^2/4); gamma >= 1/2 and
 ///                                        beta >= (gamma + 1/2)^2 / 4 (unconditionally stable)
 ///     "boundary": [                      the complete list for this step (nothing is inherited)
 ///        {"set": "top", "dof": "x"|"y"|"z"|"xy"|"xz"|"yz"|"xyz", "value_mm": -60, "amplitude"?: "ramp"},
@@ -64,7 +66,10 @@
 ///               "residual_tolerance"? = 0.005   max residual / time-averaged force (ABAQUS R_n)
 ///               "correction_tolerance"? = 0.01  max correction / max increment of u (ABAQUS C_n)
 ///               "max_iterations"? = 16, "max_cutbacks"? = 5,
-///               "cutback_factor"? = 0.25, "growth_factor"? = 1.5}
+///               "cutback_factor"? = 0.25, "growth_factor"? = 1.5,
+///               "newton"? = "full" | "modified" (keep a factorization while it contracts the residual,
+///               solver/newton.hpp), "max_contraction"? = 0.5 (modified: refactorize when
+///               ||r_k||_2 > max_contraction ||r_k-1||_2)}
 /// }
 /// Paths are relative to the folder of the case file. Unknown keys, missing keys, wrong types,
 /// wrong units (e.g. "time_period_ms"), non-finite numbers and references to undefined sets or
@@ -170,7 +175,7 @@ PrescribedMotion prescribed_motion(const BoundarySpec& bc, const std::map<std::s
 struct IncrementSpec {
   double initial = 0.0, min = 0.0, max = 0.0;  ///< [s]
   int max_increments = 100;
-  bool fixed = false;  ///< dynamic steps: constant increment `initial`, no growth, no cut-back
+  bool fixed = false;  ///< constant increment `initial`, no growth, no cut-back
 };
 
 /// Keys of a "dynamic" step (Newmark time integration, solver/analysis/dynamic_step.hpp).
@@ -179,6 +184,7 @@ struct DynamicSpec {
   double rayleigh_beta = 0.0;   ///< stiffness-proportional damping [s]
   double gamma = 0.5;           ///< Newmark gamma [-]
   double beta = 0.25;           ///< Newmark beta [-]
+  double alpha = 0.0;           ///< HHT alpha [-] in [-1/3, 0] (solver/dynamics/newmark.hpp)
   std::string key;              ///< "steps[2]", for messages
 };
 
@@ -221,6 +227,8 @@ struct SolverSpec {
   int max_cutbacks = 5;
   double cutback_factor = 0.25;        ///< dt multiplier after a failed attempt
   double growth_factor = 1.5;          ///< largest dt multiplier after an easy increment
+  bool tangent_reuse = false;          ///< "newton": "modified" (solver/newton.hpp TangentReuse)
+  double max_contraction = 0.5;        ///< [-] a reused factorization is kept while ||r_k|| <= this ||r_k-1||
 };
 
 /// A parsed, validated case file.

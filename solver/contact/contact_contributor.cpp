@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "material/input_error.hpp"
+#include "material/io/text_support.hpp"
 #include "mesh/stl.hpp"
 #include "solver/analysis/analysis_context.hpp"
 #include "solver/contact/augmented_solve.hpp"
@@ -12,11 +13,7 @@ namespace cushion::solver {
 
 namespace {
 
-std::string fmt(const char* f, double a) {
-  char s[64];
-  std::snprintf(s, sizeof s, f, a);
-  return s;
-}
+std::string fmt(const char* format, double x) { return io::format_with(format, x); }
 
 const std::vector<int>& node_set(const AnalysisContext& ctx, const ContactSpec& spec) {
   const auto it = ctx.mesh.node_sets.find(spec.set);

@@ -9,17 +9,14 @@
 #include <cstdio>
 
 #include "material/input_error.hpp"
+#include "material/io/text_support.hpp"
 #include "mesh/selectors.hpp"
 
 namespace cushion::solver {
 
 namespace {
 
-std::string fmt(const char* f, double a) {
-  char s[64];
-  std::snprintf(s, sizeof s, f, a);
-  return s;
-}
+std::string fmt(const char* format, double x) { return io::format_with(format, x); }
 
 /// The C1 ramp p(x) of width w [N] and its slope (contact_set.hpp).
 std::pair<double, double> smooth_ramp(double x, double w) {

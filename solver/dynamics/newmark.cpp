@@ -29,13 +29,16 @@ NewmarkIntegrator::NewmarkIntegrator(const Assembler& assembler, SparseMatrix M_
     throw std::invalid_argument("Newmark: M and C must be square on all DOFs");
   if (!(p_.gamma >= 0.5) || !(p_.beta >= 0.25 * (p_.gamma + 0.5) * (p_.gamma + 0.5) - 1e-15))
     throw std::invalid_argument("Newmark: parameters outside the unconditionally stable range");
+  if (!(p_.alpha >= -1.0 / 3.0 - 1e-15 && p_.alpha <= 0.0))
+    throw std::invalid_argument("Newmark: HHT alpha must be in [-1/3, 0]");
   Mff_ = free_block(M_, assembler.dofs());
   Cff_ = free_block(C_, assembler.dofs());
 }
 
 NewmarkUpdate::NewmarkUpdate(const DofMap& dofs, NewmarkParameters p, const Kinematics& start,
-                             const Kinematics& prescribed, double dt)
-    : dofs_(dofs), p_(p), start_(start), prescribed_(prescribed), dt_(dt), c_a_(1.0 / (p.beta * dt * dt)),
+                             const Kinematics& prescribed, double dt, const Eigen::VectorXd* start_force)
+    : dofs_(dofs), p_(p), start_(start), prescribed_(prescribed), start_force_(start_force), dt_(dt),
+      c_a_(1.0 / (p.beta * dt * dt)),
       c_v_(p.gamma / (p.beta * dt)),
       a_pred_(-(dt * start.v) * c_a_ - (0.5 / p.beta - 1.0) * start.a) {}
 
@@ -55,11 +58,32 @@ Eigen::VectorXd NewmarkUpdate::predictor() const {
 }
 
 ExtraTerm NewmarkIntegrator::inertia_term(const NewmarkUpdate& update) const {
-  return [this, &update](const Eigen::VectorXd& u, Eigen::VectorXd& r_full, SparseMatrix* K) {
+  const double alpha = update.parameters().alpha;
+  if (alpha != 0.0 && !update.start_force())
+    throw std::invalid_argument("Newmark: HHT (alpha != 0) needs the start force G_n in the update");
+  return [this, &update, alpha](const Eigen::VectorXd& u, Eigen::VectorXd& r_full, SparseMatrix* K) {
     const Kinematics k = update.at(u);
-    r_full += M_ * k.a + C_ * k.v;
-    if (K) *K += update.c_a() * Mff_ + update.c_v() * Cff_;
+    const double w = 1.0 + alpha;
+    r_full += M_ * k.a / w + C_ * k.v;
+    if (alpha != 0.0)
+      for (int d : assembler_.dofs().free_dofs()) r_full(d) -= alpha / w * (*update.start_force())(d);
+    if (K) *K += update.c_a() / w * Mff_ + update.c_v() * Cff_;
   };
+}
+
+Eigen::VectorXd NewmarkIntegrator::next_start_force(const Eigen::VectorXd& g_start, const Eigen::VectorXd& a) const {
+  const Eigen::VectorXd Ma = M_ * a;
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(a.size());
+  for (int d : assembler_.dofs().free_dofs()) g(d) = (p_.alpha * g_start(d) - Ma(d)) / (1.0 + p_.alpha);
+  return g;
+}
+
+Eigen::VectorXd NewmarkIntegrator::start_force(const Eigen::VectorXd& r_free, const Eigen::VectorXd& v) const {
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(v.size());
+  assembler_.dofs().scatter_free(r_free, g);
+  const Eigen::VectorXd Cv = C_ * v;
+  for (int d : assembler_.dofs().free_dofs()) g(d) += Cv(d);
+  return g;
 }
 
 Eigen::VectorXd NewmarkIntegrator::initial_acceleration(const Eigen::VectorXd& r_free, const Eigen::VectorXd& v,
@@ -81,6 +105,7 @@ NewtonResult NewmarkIntegrator::step(StateStore& state, LinearSolver& linear, Ki
                                      const Kinematics& prescribed, const Eigen::VectorXd& f_ext,
                                      const NewtonOptions& options, const std::vector<ExtraTerm>& extra) {
   if (!(dt > 0.0)) throw std::invalid_argument("Newmark: dt must be > 0");
+  if (p_.alpha != 0.0) throw std::invalid_argument("Newmark: step() integrates the plain rule only (alpha = 0)");
   const DofMap& dofs = assembler_.dofs();
   const NewmarkUpdate update(dofs, p_, k, prescribed, dt);
   Eigen::VectorXd u_target = k.u;
