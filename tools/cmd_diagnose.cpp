@@ -19,6 +19,7 @@ struct DiagnoseCli {
   std::string material, campaign, out;
   std::vector<std::string> candidates;
   int threads = 2;
+  bool joint_base = false;
 };
 
 const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
@@ -29,6 +30,8 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
   sub->add_option("campaign", opt->campaign, "campaign manifest (JSON)")->required();
   sub->add_option("-o,--output", opt->out, "output folder (diagnosis.md, report.json, fragment.json, plots)")->required();
   sub->add_option("--candidates", opt->candidates, "only these effect kinds (default: the whole catalogue)")->delimiter(',');
+  sub->add_flag("--joint-base", opt->joint_base,
+                "fit each effect together with the base moduli (for a baseline calibrated on data that contain it)");
   sub->add_option("--threads", opt->threads, "candidates fitted in parallel (default 2)")->check(CLI::Range(1, 2));
   sub->callback([opt] {
     using namespace cushion::calibration;
@@ -37,6 +40,7 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
     DiagnoseOptions o;
     o.threads = opt->threads;
     o.candidates = opt->candidates;
+    o.joint_base = opt->joint_base;
     for (const auto& k : o.candidates)
       if (!cushion::material::find_effect(k)) throw cushion::InputError("--candidates: unknown effect kind '" + k + "'");
     Diagnosis d = diagnose(def.spec, campaign, o, std::cout);

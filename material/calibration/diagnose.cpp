@@ -198,7 +198,8 @@ CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector
   CandidateModel model(base, start_effects, campaign, noise, options);
   if (refit_base) {
     model.free_base_moduli();
-    fit.kinds.push_back("base refit (hyperfoam and Prony moduli)");
+    fit.base_refitted = true;
+    if (start_effects.empty()) fit.kinds.push_back("base refit (hyperfoam and Prony moduli)");
   }
   std::vector<double> u = model.start();
   fit.parameters = static_cast<int>(u.size());
@@ -239,6 +240,7 @@ CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector
     fit.bic = fit.chi2 + fit.parameters * std::log(static_cast<double>(n_residuals));
     fit.delta_bic = baseline_bic - fit.bic;
     fit.effects = model.effects_at(u.data());
+    fit.fitted = model.spec_at(u.data());
     if (!fit.converged) fit.message = "did not converge: " + fit.message;
   } catch (const std::exception& e) {
     fit.converged = false;
@@ -419,16 +421,17 @@ Diagnosis diagnose(const material::MaterialSpec& baseline, const Campaign& campa
     }
     singles.push_back({material::EffectSpec{info.kind, {}}});
   }
+  const bool base_ref = baseline.base == material::MaterialSpec::Base::hyperfoam && !baseline.hyperfoam.empty();
   auto job = [&](std::vector<material::EffectSpec> effects, bool scan) {
     return [&, effects, scan] {
-      return fit_candidate(baseline, effects, campaign, d.noise, d.residuals, d.baseline_bic, options, scan);
+      return fit_candidate(baseline, effects, campaign, d.noise, d.residuals, d.baseline_bic, options, scan,
+                           options.joint_base && base_ref);
     };
   };
   std::vector<std::function<CandidateFit()>> jobs;
   for (const auto& s : singles) jobs.push_back(job(s, true));
   // Reference: the base refitted WITHOUT any effect (hyperfoam moduli only). An effect must beat it too,
   // else the residual is as well explained by a base calibration that is slightly off.
-  const bool base_ref = baseline.base == material::MaterialSpec::Base::hyperfoam && !baseline.hyperfoam.empty();
   if (base_ref)
     jobs.push_back([&] {
       return fit_candidate(baseline, {}, campaign, d.noise, d.residuals, d.baseline_bic, options, true, true);
@@ -501,11 +504,13 @@ Diagnosis diagnose(const material::MaterialSpec& baseline, const Campaign& campa
       else effects.push_back(j);
     }
     d.fragment = {{"effects", effects}};
-    CandidateModel m(baseline, w.effects, campaign, d.noise, options);
-    d.extended = m.spec_at(m.start().data());
+    d.extended = w.fitted;
     std::ostringstream o;
     o << "Add " << w.name() << " (dBIC " << fmt(w.delta_bic, 4) << " for " << w.parameters
       << " parameters; chi2/N " << fmt(d.baseline_chi2 / d.residuals) << " -> " << fmt(w.chi2 / d.residuals) << "). ";
+    if (w.base_refitted)
+      o << "Fitted together with the base moduli (joint): use material_extended.json, whose hyperfoam mu_i and Prony "
+           "g_i are refitted too; the fragment alone on the old base is not the fitted model. ";
     if (d.winner_at_noise_level) {
       o << "With it every test falls to the noise level (within " << fmt(options.compare.noise_level_ratio, 2) << "x).";
     } else {
@@ -528,7 +533,11 @@ Diagnosis diagnose(const material::MaterialSpec& baseline, const Campaign& campa
         << ") and no catalogue effect beats it by dBIC > " << fmt(options.strong_evidence);
       if (!d.candidates.empty() && std::isfinite(d.candidates.front().delta_bic))
         o << " (best: " << d.candidates.front().name() << ", dBIC " << fmt(d.candidates.front().delta_bic, 4) << ")";
-      o << ". Recalibrate the base first (rerun `cushion fit`, e.g. with --refit-on all), then diagnose again.";
+      o << ". Recalibrate the base first (rerun `cushion fit`, e.g. with --refit-on all), then diagnose again";
+      if (!options.joint_base)
+        o << "; if the baseline was fitted on this same campaign, the fit may have absorbed the effect: rerun with "
+             "--joint-base (each effect fitted together with the base moduli)";
+      o << ".";
     } else {
       o << "The model fails beyond noise, but no catalogue effect reduces the penalised error convincingly (dBIC > "
         << fmt(options.strong_evidence) << "): the base calibration is the first suspect (rerun `cushion fit`, e.g. with "

@@ -9,7 +9,8 @@
 ///  2. Candidates: each catalogue effect not already in the material (needs_viscoelastic ones only on a
 ///     Prony material). Refit ONLY the effect's parameters flagged `fit` (the base calibration is kept as
 ///     is: the baseline is assumed calibrated; a wrong base shows as a remaining failure after the best
-///     effect). Parameters are fitted as log10(x) when flagged log_scale, else x/default; bounds: the
+///     effect), or with joint_base the effect's parameters and the base-refit factors together (a
+///     baseline fitted on data that contain the effect). Parameters are fitted as log10(x) when flagged log_scale, else x/default; bounds: the
 ///     catalogue range, and 4 decades either side of the default for log-scale ones. Start: a coarse scan
 ///     per parameter (log-scale: default x 10^{-3..3}; else default x {0, 0.3, 1, 3, 10}), then Ceres
 ///     bounded Levenberg-Marquardt with forward-difference Jacobian on the noise-normalised residuals
@@ -47,6 +48,13 @@ struct DiagnoseOptions {
   double strong_evidence = 10.0;  ///< dBIC threshold [-]
   int threads = 2;
   std::vector<std::string> candidates;  ///< restrict to these kinds (empty: the whole catalogue)
+  /// Fit every candidate together with the base-refit factors (log10 factor in [-1, 1] on each hyperfoam
+  /// mu_i and Prony a_i) instead of on the base as given. For a baseline calibrated (`cushion fit`) on data
+  /// that contain the missing effect: the fit has absorbed part of it into the base moduli, which the
+  /// candidate must be free to give back. The reference is then the base refit alone (same factors, no
+  /// effect), so the criterion is the same: an effect must beat it by strong_evidence. Slower (8 more
+  /// parameters per candidate).
+  bool joint_base = false;
 };
 
 struct CandidateFit {
@@ -59,6 +67,9 @@ struct CandidateFit {
   double chi2 = 0.0, bic = 0.0, delta_bic = 0.0;
   bool supported = false;
   CompareResult compare;                   ///< every test with the candidate added
+  material::MaterialSpec fitted;           ///< the baseline with the candidate at its fitted parameters
+                                           ///< (and the base moduli refitted, joint_base or the base refit)
+  bool base_refitted = false;              ///< the base moduli were fitted too
   int evaluations = 0;
   double seconds = 0.0;
   std::string name() const;                ///< "kind" or "kind + kind"

@@ -83,3 +83,17 @@ TEST(CliDiagnose, SingleTestCampaignWarnsAndStillReports) {
   EXPECT_TRUE(fs::exists(dir / "out" / "diagnosis.md"));
   EXPECT_TRUE(fs::exists(dir / "out" / "report.json"));
 }
+
+// --joint-base: the candidate is fitted together with the base moduli; the verdict points at the extended
+// material (effect + refitted base), which is written.
+TEST(CliDiagnose, JointBaseNamesTheEffectAndWritesTheRefittedMaterial) {
+  const fs::path dir = scratch() / "joint";
+  const CommandRun r = run_cushion("diagnose " + quoted(hidden() / "base_material.json") + " " +
+                                   quoted(hidden() / "campaign_friction" / "campaign.json") + " -o " +
+                                   quoted(dir / "out") + " --candidates friction --joint-base");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("Add friction"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("joint"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(dir / "out" / "material_extended.json"));
+  EXPECT_TRUE(fs::exists(dir / "out" / "fragment.json"));
+}
