@@ -6,7 +6,8 @@
 # shared machine wall times are only meaningful with the load; CPU time is less sensitive to it.
 # Usage: tools/bench_cube.sh [CUSHION_BINARY] [n ...]     (default: build/tools/cushion, n = 10 20 40)
 # Environment: OPENBLAS_NUM_THREADS (BLAS threads of the CHOLMOD factorization; 1 is faster on a
-# loaded machine), BENCH_KEEP=DIR keeps each run's output and summary in DIR/out_n.
+# loaded machine), BENCH_KEEP=DIR keeps each run's output and summary in DIR/out_n,
+# BENCH_NEWTON=modified runs with "solver": {"newton": "modified"} (tangent reuse; default: full).
 # A long run: nice -n 10 tools/bench_cube.sh build/tools/cushion 40 > bench_40.md 2>&1 &
 set -euo pipefail
 # (the whole script is read before it runs: editing it during a long run is harmless)
@@ -21,7 +22,9 @@ main() {
   [ -n "${BENCH_KEEP:-}" ] || trap 'rm -rf "$work"' EXIT
   load() { cut -d' ' -f1 /proc/loadavg; }
 
-  echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-unset}"
+  newton="${BENCH_NEWTON:-full}"
+  case "$newton" in full|modified) ;; *) echo "bench_cube.sh: BENCH_NEWTON must be full or modified, not '$newton'" >&2; exit 2;; esac
+  echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), OPENBLAS_NUM_THREADS=${OPENBLAS_NUM_THREADS:-unset}, Newton: $newton"
   echo
   echo "| mesh | elements | free dofs | nonzeros | assembly us/element | factorizations | factorization s (each) | symbolic analyses | increments | Newton iterations | total s (wall) | CPU s | peak RSS MiB | load before/after |"
   echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
@@ -29,6 +32,7 @@ main() {
     # The shipped case with its mesh replaced by n x n x n elements (paths made absolute).
     sed -e "s|\"elements\": \[4, 4, 8\]|\"elements\": [$n, $n, $n]|" \
         -e "s|\"../materials/paper_table3.json\"|\"$here/cases/materials/paper_table3.json\"|" \
+        -e "s|\"solver\": {\"linear_solver\": \"auto\"}|\"solver\": {\"linear_solver\": \"auto\", \"newton\": \"$newton\"}|" \
         "$here/cases/cube_compression/case.json" > "$work/cube_$n.json"
     s="$work/summary_$n.txt"
     before=$(load)
