@@ -65,7 +65,7 @@ rm -rf results/loop
 
 # 6. The paper's validation (section 4): SIT-BAR pressed 60 mm in and out (Figs. 9-11), then the
 #    1-20 Hz sweep about a 20 mm preload with and without Rayleigh damping (Fig. 12).
-echo; echo "== cushion run: SIT-BAR 60 mm into the 400 x 400 x 80 mm block and back (about 1-2 min) =="
+echo; echo "== cushion run: SIT-BAR 60 mm into the 400 x 400 x 80 mm block and back (about 35 s) =="
 rm -rf results/sitbar results/sweep
 "$cushion" run cases/sitbar_quasistatic/case.json -o results/sitbar --quiet
 bash cases/sitbar_quasistatic/plot.sh "$PWD/results/sitbar" "$PWD/$cushion"
