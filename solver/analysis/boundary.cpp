@@ -36,6 +36,14 @@ void StepBoundary::apply(double t_step, Eigen::VectorXd& u) const {
       u(d) = prescribed_value(*e.bc, amplitudes_, u_start_(d), t_step, step_.period, t_start_);
 }
 
+void StepBoundary::apply_motion(double t_step, Eigen::VectorXd& u, Eigen::VectorXd& v, Eigen::VectorXd& a) const {
+  for (const Entry& e : entries_)
+    for (int d : e.dofs) {
+      const PrescribedMotion m = prescribed_motion(*e.bc, amplitudes_, u_start_(d), t_step, step_.period, t_start_);
+      u(d) = m.u, v(d) = m.v, a(d) = m.a;
+    }
+}
+
 std::vector<double> StepBoundary::corner_times() const {
   std::vector<double> times;
   for (const Entry& e : entries_) {

@@ -29,6 +29,10 @@ class StepBoundary {
   /// vector [mm]). Conditions are applied in the order listed: on a DOF named by two conditions the
   /// later one wins.
   void apply(double t_step, Eigen::VectorXd& u) const;
+  /// The same with the time derivatives (prescribed_motion, case_spec.hpp): prescribed displacement
+  /// [mm], velocity [mm/s] and acceleration [mm/s^2] at step time t [s] into the constrained entries
+  /// of the full vectors u, v, a (dynamic steps).
+  void apply_motion(double t_step, Eigen::VectorXd& u, Eigen::VectorXd& v, Eigen::VectorXd& a) const;
 
   /// Corner times of the step's amplitudes as step times in (0, period) [s]: increments end there
   /// exactly, so piecewise-linear histories are followed without cutting corners.

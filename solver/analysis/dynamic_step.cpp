@@ -1,6 +1,5 @@
 // Dynamic steps: prescribed kinematics, the Newmark predictor and the inertia/damping term per
 // increment, energy bookkeeping, run by the shared increment loop (increment_loop.hpp).
-#include "material/io/text_support.hpp"
 #include "solver/analysis/dynamic_step.hpp"
 
 #include <algorithm>
@@ -9,6 +8,7 @@
 #include <optional>
 
 #include "material/input_error.hpp"
+#include "material/io/text_support.hpp"
 #include "solver/analysis/boundary.hpp"
 #include "solver/analysis/increment_loop.hpp"
 #include "solver/contact/contact_contributor.hpp"
@@ -24,39 +24,6 @@ namespace {
 using dynamics::Kinematics;
 
 std::string fmt(const char* format, double x) { return io::format_with(format, x); }
-
-/// Prescribed u, v, a of the step's conditions as functions of step time (later conditions win).
-class PrescribedKinematics {
- public:
-  PrescribedKinematics(const mesh::Mesh& mesh, const StepSpec& step, const std::map<std::string, Amplitude>& amplitudes,
-                       double t_start, const Eigen::VectorXd& u_start)
-      : step_(step), amplitudes_(amplitudes), t_start_(t_start), u_start_(u_start) {
-    for (const BoundarySpec& bc : step.boundary) {
-      std::vector<int> dofs;
-      for (int node : mesh.node_sets.at(bc.set))
-        for (int c = 0; c < 3; ++c)
-          if (bc.dofs[c]) dofs.push_back(DofMap::dof(node, c));
-      entries_.emplace_back(&bc, std::move(dofs));
-    }
-  }
-  /// Full vectors at step time t [s]: constrained entries prescribed, free entries those of `base`.
-  Kinematics at(double t, const Kinematics& base) const {
-    Kinematics k = base;
-    for (const auto& [bc, dofs] : entries_)
-      for (int d : dofs) {
-        const PrescribedMotion m = prescribed_motion(*bc, amplitudes_, u_start_(d), t, step_.period, t_start_);
-        k.u(d) = m.u, k.v(d) = m.v, k.a(d) = m.a;
-      }
-    return k;
-  }
-
- private:
-  const StepSpec& step_;
-  const std::map<std::string, Amplitude>& amplitudes_;
-  double t_start_;
-  Eigen::VectorXd u_start_;
-  std::vector<std::pair<const BoundarySpec*, std::vector<int>>> entries_;
-};
 
 /// Energies of the step since its start [mJ = N mm] (dynamic_step.hpp, <step>_energy.csv).
 struct EnergyAccount {
@@ -76,10 +43,10 @@ struct EnergyAccount {
 /// Increments of a dynamic step: Newmark kinematics, inertia and damping term, energies.
 class DynamicStepper final : public IncrementStepper {
  public:
-  DynamicStepper(AnalysisContext& ctx, const StepSpec& step, const PrescribedKinematics& prescribed,
+  DynamicStepper(AnalysisContext& ctx, const StepSpec& step, const StepBoundary& boundary,
                  const dynamics::NewmarkIntegrator& newmark, const Assembler& assembler, Kinematics start,
                  const Eigen::VectorXd& f_int_start, const Eigen::VectorXd& hht_force_start, HistoryWriter& energy_file)
-      : ctx_(ctx), step_(step), prescribed_(prescribed), newmark_(newmark), assembler_(assembler),
+      : ctx_(ctx), step_(step), boundary_(boundary), newmark_(newmark), assembler_(assembler),
         k_(std::move(start)), f_int_n_(f_int_start), hht_force_(hht_force_start), energy_file_(energy_file) {
     c_n_ = newmark_.damping_force(k_.v);
     g_n_ = f_int_n_ + newmark_.inertia_force(k_.a) + c_n_;
@@ -89,7 +56,8 @@ class DynamicStepper final : public IncrementStepper {
   IncrementAttempt begin_attempt(double t_begin, double t_end) override {
     const DofMap& dofs = assembler_.dofs();
     const double dt = t_end - t_begin;
-    p_ = prescribed_.at(t_end, k_);
+    p_ = k_;
+    boundary_.apply_motion(t_end, p_.u, p_.v, p_.a);
     update_.emplace(dofs, newmark_.parameters(), k_, p_, dt, &hht_force_);
     IncrementAttempt a;
     a.dt_material = dt;
@@ -133,7 +101,7 @@ class DynamicStepper final : public IncrementStepper {
  private:
   AnalysisContext& ctx_;
   const StepSpec& step_;
-  const PrescribedKinematics& prescribed_;
+  const StepBoundary& boundary_;
   const dynamics::NewmarkIntegrator& newmark_;
   const Assembler& assembler_;
   Kinematics k_, p_, next_;
@@ -180,12 +148,12 @@ void DynamicStep::run(AnalysisContext& ctx) {
 
   std::vector<std::shared_ptr<ResidualContributor>> contributors;
   for (auto& c : step_contacts(ctx, spec_, dofs)) contributors.push_back(std::move(c));
-  const PrescribedKinematics prescribed(ctx.mesh, spec_, ctx.spec.amplitudes, t0, ctx.u);
+  const StepBoundary boundary(ctx.mesh, spec_, ctx.spec.amplitudes, t0, ctx.u);
 
   // Start kinematics: velocity carried from a preceding dynamic step or zero, acceleration from
   // equilibrium at the start.
   Kinematics k{ctx.u, ctx.v.size() == n ? ctx.v : zero, zero};
-  k = prescribed.at(0.0, k);
+  boundary.apply_motion(0.0, k.u, k.v, k.a);
   k.u = ctx.u;  // a jump of a prescribed value at the step start is applied by the first increment
   Eigen::VectorXd f_int_n, hht_force;
   {
@@ -211,7 +179,7 @@ void DynamicStep::run(AnalysisContext& ctx) {
   HistoryWriter energy_file(dir / (spec_.name + "_energy.csv"), energy_columns(),
                             {"step " + spec_.name + ": energies since t = " + fmt("%.9g", t0) +
                              " s [mJ = N mm]; balance = kinetic + internal + damping - external - kinetic at start"});
-  DynamicStepper stepper(ctx, spec_, prescribed, newmark, assembler, std::move(k), f_int_n, hht_force, energy_file);
+  DynamicStepper stepper(ctx, spec_, boundary, newmark, assembler, std::move(k), f_int_n, hht_force, energy_file);
   energy_file.write_row(t0, stepper.energy().row());
   ctx.log << "step '" << spec_.name << "' (dynamic, Newmark gamma = " << dyn.gamma << ", beta = " << dyn.beta
           << ", HHT alpha = " << dyn.alpha
@@ -219,8 +187,8 @@ void DynamicStep::run(AnalysisContext& ctx) {
           << " s, " << dofs.num_free() << " free DOFs, " << (spec_.increment.fixed ? "fixed" : "automatic")
           << " increments) from t = " << t0 << " s, start kinetic energy " << stepper.energy().kinetic << " mJ\n";
 
-  const std::vector<double> corners = StepBoundary(ctx.mesh, spec_, ctx.spec.amplitudes, t0, ctx.u).corner_times();
-  const IncrementControl control = run_increment_loop(ctx, spec_, system, contributors, corners, stepper);
+  const IncrementControl control =
+      run_increment_loop(ctx, spec_, system, contributors, boundary.corner_times(), stepper);
   ctx.constrained = mask;
   ctx.log << "step '" << spec_.name << "' done: " << control.increments() << " increments, " << control.cutbacks()
           << " cut-backs, kinetic energy " << stepper.energy().kinetic << " mJ, energy balance "

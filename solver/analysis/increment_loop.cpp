@@ -70,23 +70,19 @@ NewtonResult solve_attempt(IncrementAttempt& attempt, LinearSolver& linear, Newt
       attempt.prescribed_increment + (x.size() ? (x - x_start).cwiseAbs().maxCoeff() : 0.0);
   TimedProblem timed_problem(problem, ctx.stats);
   auto log = [&](const NewtonIterate& it) { ctx.log << "    " << format_iterate(it) << "\n"; };
-  try {
+  // solve_newton reports a singular tangent as an outcome and drops `factor` on any failure.
+  result = solve_newton(timed_problem, linear, x, options, log, &factor);
+  // Augmented-Lagrangian (Uzawa) updates of the contributors: solve again until none changes.
+  for (bool again = result.converged(); again;) {
+    again = false;
+    for (auto& c : contributors) again = c->update_after_solve(contributor_failure) || again;
+    if (!contributor_failure.empty()) return fail(NewtonOutcome::failed, contributor_failure);
+    if (!again) break;
+    const int before = result.iterations;
     result = solve_newton(timed_problem, linear, x, options, log, &factor);
-    // Augmented-Lagrangian (Uzawa) updates of the contributors: solve again until none changes.
-    for (bool again = result.converged(); again;) {
-      again = false;
-      for (auto& c : contributors) again = c->update_after_solve(contributor_failure) || again;
-      if (!contributor_failure.empty()) return fail(NewtonOutcome::failed, contributor_failure);
-      if (!again) break;
-      const int before = result.iterations;
-      result = solve_newton(timed_problem, linear, x, options, log, &factor);
-      result.iterations += before;
-      again = result.converged();
-    }
-  } catch (const SingularMatrixError& e) {
-    return fail(NewtonOutcome::singular, e.what());
+    result.iterations += before;
+    again = result.converged();
   }
-  if (!result.converged()) factor.current = false;
   return result;
 }
 
