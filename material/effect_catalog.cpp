@@ -11,7 +11,7 @@
 #include "material/effect_pneumatic.hpp"
 #include "material/effect_stiffness_damping.hpp"
 #include "material/effect_strain_dependent_prony.hpp"
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "material/viscoelastic.hpp"
 
 namespace cushion::material {

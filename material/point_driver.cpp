@@ -8,7 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 
 namespace cushion::material {
 

@@ -9,7 +9,7 @@
 #include <sstream>
 #include <unordered_map>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "mesh/text.hpp"
 
 namespace cushion::mesh {

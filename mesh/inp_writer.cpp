@@ -1,7 +1,7 @@
 #include <fstream>
 #include <ostream>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "mesh/inp_reader.hpp"
 
 namespace cushion::mesh {

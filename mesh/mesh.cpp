@@ -5,7 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "mesh/shape.hpp"
 
 namespace cushion::mesh {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "mesh/text.hpp"
 
 namespace cushion::mesh {

@@ -7,7 +7,7 @@
 #include <map>
 #include <sstream>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 
 namespace cushion::mesh {
 namespace {

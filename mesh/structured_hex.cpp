@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "mesh/selectors.hpp"
 
 namespace cushion::mesh {

@@ -7,7 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "mesh/quadratic.hpp"
 #include "mesh/selectors.hpp"
 

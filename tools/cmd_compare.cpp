@@ -6,12 +6,12 @@
 #include <filesystem>
 #include <iostream>
 
-#include "material/calibration/campaign.hpp"
-#include "material/calibration/compare.hpp"
-#include "material/calibration/compare_output.hpp"
-#include "material/calibration/compare_structure.hpp"
-#include "material/calibration/plot.hpp"
-#include "material/calibration/run_history.hpp"
+#include "calibration/campaign.hpp"
+#include "calibration/compare.hpp"
+#include "calibration/compare_output.hpp"
+#include "calibration/compare_structure.hpp"
+#include "calibration/plot.hpp"
+#include "calibration/run_history.hpp"
 #include "material/io/material_file.hpp"
 #include "tools/command.hpp"
 #include "tools/gnuplot.hpp"

@@ -1,14 +1,14 @@
 // `cushion diagnose MATERIAL.json CAMPAIGN.json -o DIR`: which effect of the catalogue is missing from a
-// calibrated material (ranked candidates, evidence, material-file fragment), material/calibration/diagnose.hpp.
+// calibrated material (ranked candidates, evidence, material-file fragment), calibration/diagnose.hpp.
 #include <filesystem>
 #include <iostream>
 
-#include "material/calibration/campaign.hpp"
-#include "material/calibration/compare.hpp"
-#include "material/calibration/diagnose.hpp"
-#include "material/calibration/diagnose_output.hpp"
-#include "material/calibration/plot.hpp"
-#include "material/input_error.hpp"
+#include "calibration/campaign.hpp"
+#include "calibration/compare.hpp"
+#include "calibration/diagnose.hpp"
+#include "calibration/diagnose_output.hpp"
+#include "calibration/plot.hpp"
+#include "io/input_error.hpp"
 #include "material/io/material_file.hpp"
 #include "tools/command.hpp"
 #include "tools/gnuplot.hpp"

@@ -4,10 +4,10 @@
 #include <iostream>
 #include <sstream>
 
-#include "material/calibration/campaign.hpp"
-#include "material/calibration/fit_output.hpp"
-#include "material/calibration/fit_pipeline.hpp"
-#include "material/input_error.hpp"
+#include "calibration/campaign.hpp"
+#include "calibration/fit_output.hpp"
+#include "calibration/fit_pipeline.hpp"
+#include "io/input_error.hpp"
 #include "tools/command.hpp"
 #include "tools/gnuplot.hpp"
 

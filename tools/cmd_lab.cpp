@@ -1,7 +1,7 @@
 // `cushion lab TRUTH.json -o DIR`: the virtual test lab (synthetic campaigns from a known material).
 #include <iostream>
 
-#include "material/calibration/lab.hpp"
+#include "calibration/lab.hpp"
 #include "tools/command.hpp"
 
 namespace {

@@ -6,8 +6,8 @@
 #include <memory>
 #include <sstream>
 
-#include "material/input_error.hpp"
-#include "material/io/csv.hpp"
+#include "io/input_error.hpp"
+#include "io/csv.hpp"
 #include "material/io/material_file.hpp"
 #include "material/io/protocol_file.hpp"
 #include "material/point_driver.hpp"

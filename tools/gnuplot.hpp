@@ -3,7 +3,7 @@
 /// still there, else the first on PATH, else "" (plots are then skipped with a message).
 #include <string>
 
-#include "material/calibration/plot.hpp"
+#include "calibration/plot.hpp"
 
 namespace cushion::tools {
 

@@ -3,7 +3,7 @@
 #include <exception>
 #include <iostream>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "tools/command.hpp"
 
 namespace cushion::tools {

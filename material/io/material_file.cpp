@@ -2,9 +2,9 @@
 
 #include <stdexcept>
 
-#include "material/input_error.hpp"
-#include "material/io/json_reader.hpp"
-#include "material/io/text_support.hpp"
+#include "io/input_error.hpp"
+#include "io/json_reader.hpp"
+#include "io/text_support.hpp"
 #include "material/neo_hookean.hpp"
 
 namespace cushion::material {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "material/io/json_reader.hpp"
+#include "io/json_reader.hpp"
 
 namespace cushion::material {
 

@@ -5,7 +5,7 @@
 #include <sstream>
 #include <thread>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "solver/analysis/boundary.hpp"
 #include "solver/contact/contact_contributor.hpp"
 

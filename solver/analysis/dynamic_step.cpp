@@ -7,8 +7,8 @@
 #include <cstdio>
 #include <optional>
 
-#include "material/input_error.hpp"
-#include "material/io/text_support.hpp"
+#include "io/input_error.hpp"
+#include "io/text_support.hpp"
 #include "solver/analysis/boundary.hpp"
 #include "solver/analysis/increment_loop.hpp"
 #include "solver/contact/contact_contributor.hpp"

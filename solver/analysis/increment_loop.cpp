@@ -1,4 +1,4 @@
-#include "material/io/text_support.hpp"
+#include "io/text_support.hpp"
 #include "solver/analysis/increment_loop.hpp"
 
 #include <algorithm>

@@ -9,7 +9,7 @@
 #include <mutex>
 #include <thread>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "solver/contact/contact_contributor.hpp"
 #include "solver/dynamics/contact_linearisation.hpp"
 #include "solver/dynamics/sweep.hpp"

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "material/input_error.hpp"
-#include "material/io/json_reader.hpp"
-#include "material/io/text_support.hpp"
+#include "io/input_error.hpp"
+#include "io/json_reader.hpp"
+#include "io/text_support.hpp"
 #include "mesh/selectors.hpp"
 
 namespace cushion::solver {

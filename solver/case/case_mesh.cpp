@@ -1,7 +1,7 @@
 #include <algorithm>
 
-#include "material/input_error.hpp"
-#include "material/io/text_support.hpp"
+#include "io/input_error.hpp"
+#include "io/text_support.hpp"
 #include "mesh/inp_reader.hpp"
 #include "mesh/quadratic.hpp"
 #include "mesh/selectors.hpp"

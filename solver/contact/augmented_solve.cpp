@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 
 namespace cushion::solver {
 

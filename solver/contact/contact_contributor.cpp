@@ -3,8 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "material/input_error.hpp"
-#include "material/io/text_support.hpp"
+#include "io/input_error.hpp"
+#include "io/text_support.hpp"
 #include "mesh/stl.hpp"
 #include "solver/analysis/analysis_context.hpp"
 #include "solver/contact/augmented_solve.hpp"

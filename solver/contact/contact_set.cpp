@@ -8,8 +8,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "material/input_error.hpp"
-#include "material/io/text_support.hpp"
+#include "io/input_error.hpp"
+#include "io/text_support.hpp"
 #include "mesh/selectors.hpp"
 
 namespace cushion::solver {

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 
 namespace cushion::solver {
 

@@ -4,7 +4,7 @@
 
 #include <stdexcept>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 
 namespace cushion::solver::dynamics {
 namespace {

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "material/io/json_reader.hpp"
-#include "material/io/text_support.hpp"
+#include "io/json_reader.hpp"
+#include "io/text_support.hpp"
 
 namespace cushion::solver::dynamics {
 namespace {

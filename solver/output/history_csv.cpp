@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "material/io/text_support.hpp"
+#include "io/text_support.hpp"
 
 namespace cushion::solver {
 

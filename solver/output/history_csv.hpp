@@ -1,7 +1,7 @@
 #pragma once
 /// History output: a CSV table "time_s,<column>,..." (units in the column names, e.g. "top.U3_mm",
 /// "top.RF3_N"), one row per converged increment, flushed after every row so that an interrupted run
-/// leaves every completed row on disk. Readable by cushion::read_csv (material/io/csv.hpp).
+/// leaves every completed row on disk. Readable by cushion::read_csv (io/csv.hpp).
 #include <filesystem>
 #include <fstream>
 #include <span>

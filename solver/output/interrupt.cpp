@@ -3,7 +3,7 @@
 #include <csignal>
 #include <unistd.h>
 
-#include "material/io/text_support.hpp"
+#include "io/text_support.hpp"
 
 namespace cushion::solver {
 

@@ -15,7 +15,7 @@
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
-#include "material/io/text_support.hpp"
+#include "io/text_support.hpp"
 #include "solver/output/cell_measures.hpp"
 
 namespace cushion::solver {

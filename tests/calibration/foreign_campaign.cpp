@@ -7,9 +7,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "material/calibration/lab.hpp"
+#include "calibration/lab.hpp"
 #include "material/hyperfoam.hpp"
-#include "material/io/csv.hpp"
+#include "io/csv.hpp"
 #include "material/viscoelastic.hpp"
 
 namespace cushion::foreign {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <vector>
 
-#include "material/calibration/difference_stress.hpp"
+#include "calibration/difference_stress.hpp"
 
 namespace cushion::calibration::testing {
 

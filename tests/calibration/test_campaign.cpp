@@ -7,8 +7,8 @@
 #include <fstream>
 #include <numbers>
 
-#include "material/calibration/campaign.hpp"
-#include "material/input_error.hpp"
+#include "calibration/campaign.hpp"
+#include "io/input_error.hpp"
 
 namespace cal = cushion::calibration;
 namespace fs = std::filesystem;

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <random>
 
-#include "material/calibration/compare.hpp"
+#include "calibration/compare.hpp"
 #include "material/io/material_file.hpp"
 
 namespace cc = cushion::calibration;

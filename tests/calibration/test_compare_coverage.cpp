@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "material/calibration/compare.hpp"
+#include "calibration/compare.hpp"
 
 namespace cc = cushion::calibration;
 namespace fs = std::filesystem;

@@ -8,9 +8,9 @@
 #include <fstream>
 #include <random>
 
-#include "material/calibration/campaign.hpp"
-#include "material/calibration/compare_structure.hpp"
-#include "material/input_error.hpp"
+#include "calibration/campaign.hpp"
+#include "calibration/compare_structure.hpp"
+#include "io/input_error.hpp"
 
 namespace cc = cushion::calibration;
 namespace fs = std::filesystem;

@@ -7,7 +7,7 @@
 
 #include <sstream>
 
-#include "material/calibration/diagnose.hpp"
+#include "calibration/diagnose.hpp"
 #include "material/io/material_file.hpp"
 
 namespace cc = cushion::calibration;

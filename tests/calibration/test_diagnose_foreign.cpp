@@ -26,9 +26,9 @@
 #include <sstream>
 
 #include "foreign_campaign.hpp"
-#include "material/calibration/diagnose.hpp"
-#include "material/calibration/fit_model.hpp"
-#include "material/calibration/fit_pipeline.hpp"
+#include "calibration/diagnose.hpp"
+#include "calibration/fit_model.hpp"
+#include "calibration/fit_pipeline.hpp"
 
 namespace cc = cushion::calibration;
 namespace cf = cushion::foreign;

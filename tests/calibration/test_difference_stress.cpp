@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "material/calibration/decomposition.hpp"
-#include "material/calibration/hereditary_fit.hpp"
+#include "calibration/decomposition.hpp"
+#include "calibration/hereditary_fit.hpp"
 #include "synthetic_records.hpp"
 
 namespace cal = cushion::calibration;

@@ -8,10 +8,10 @@
 #include <fstream>
 #include <numbers>
 
-#include "material/calibration/abaqus_cards.hpp"
-#include "material/calibration/fit_model.hpp"
-#include "material/calibration/fit_prony_conversion.hpp"
-#include "material/calibration/plot.hpp"
+#include "calibration/abaqus_cards.hpp"
+#include "calibration/fit_model.hpp"
+#include "calibration/fit_prony_conversion.hpp"
+#include "calibration/plot.hpp"
 #include "material/hyperfoam.hpp"
 
 namespace cal = cushion::calibration;

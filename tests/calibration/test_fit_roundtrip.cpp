@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "material/calibration/fit_pipeline.hpp"
-#include "material/calibration/lab.hpp"
+#include "calibration/fit_pipeline.hpp"
+#include "calibration/lab.hpp"
 #include "material/hyperfoam.hpp"
 
 namespace cal = cushion::calibration;

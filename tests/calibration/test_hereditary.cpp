@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "material/calibration/difference_stress.hpp"
-#include "material/calibration/hereditary.hpp"
+#include "calibration/difference_stress.hpp"
+#include "calibration/hereditary.hpp"
 
 namespace cal = cushion::calibration;
 using cal::cplx;

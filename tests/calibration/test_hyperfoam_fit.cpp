@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "material/calibration/hyperfoam_fit.hpp"
+#include "calibration/hyperfoam_fit.hpp"
 #include "material/stability.hpp"
 
 namespace cal = cushion::calibration;

@@ -7,9 +7,9 @@
 #include <fstream>
 #include <numbers>
 
-#include "material/calibration/lab.hpp"
+#include "calibration/lab.hpp"
 #include "material/hyperfoam.hpp"
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "material/viscoelastic.hpp"
 
 namespace cal = cushion::calibration;

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "material/calibration/prony_fit.hpp"
+#include "calibration/prony_fit.hpp"
 
 namespace cal = cushion::calibration;
 

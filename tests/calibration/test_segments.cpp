@@ -4,8 +4,8 @@
 
 #include <random>
 
-#include "material/calibration/segments.hpp"
-#include "material/input_error.hpp"
+#include "calibration/segments.hpp"
+#include "io/input_error.hpp"
 
 namespace cal = cushion::calibration;
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "material/calibration/sine_fit.hpp"
+#include "calibration/sine_fit.hpp"
 
 using cushion::calibration::fit_sine;
 

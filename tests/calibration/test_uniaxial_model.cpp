@@ -5,9 +5,9 @@
 
 #include <cmath>
 
-#include "material/calibration/fit_model.hpp"
-#include "material/calibration/hereditary.hpp"
-#include "material/calibration/lab.hpp"
+#include "calibration/fit_model.hpp"
+#include "calibration/hereditary.hpp"
+#include "calibration/lab.hpp"
 #include "material/hyperfoam.hpp"
 
 namespace cal = cushion::calibration;

@@ -9,7 +9,7 @@
 #include "material/effect_friction.hpp"
 #include "material/effect_mullins.hpp"
 #include "material/effect_pneumatic.hpp"
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "tests/material/test_effect_support.hpp"
 
 namespace cushion::material {

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "material/io/material_file.hpp"
 #include "material/io/protocol_file.hpp"
 #include "material/stability.hpp"

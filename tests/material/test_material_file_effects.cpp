@@ -3,7 +3,7 @@
 
 #include <filesystem>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "material/io/material_file.hpp"
 
 namespace mat = cushion::material;

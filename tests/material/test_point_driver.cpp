@@ -6,7 +6,7 @@
 #include <numbers>
 
 #include "material/hyperfoam.hpp"
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "material/neo_hookean.hpp"
 #include "material/point_driver.hpp"
 #include "material/viscoelastic.hpp"

@@ -6,7 +6,7 @@
 #include <sstream>
 #include <unistd.h>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "mesh/inp_reader.hpp"
 #include "mesh/structured_hex.hpp"
 

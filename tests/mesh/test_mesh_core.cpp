@@ -3,7 +3,7 @@
 
 #include <set>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "mesh/mesh.hpp"
 #include "mesh/shape.hpp"
 #include "mesh/structured_hex.hpp"

@@ -1,7 +1,7 @@
 // Node selectors (text and struct forms) and node set -> surface.
 #include <gtest/gtest.h>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "mesh/selectors.hpp"
 #include "mesh/structured_hex.hpp"
 

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "mesh/structured_hex.hpp"
 
 namespace cm = cushion::mesh;

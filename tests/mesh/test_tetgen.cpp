@@ -8,7 +8,7 @@
 #include <unistd.h>
 #include <set>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "mesh/quadratic.hpp"
 #include "mesh/stl.hpp"
 #include "mesh/tetgen_mesher.hpp"

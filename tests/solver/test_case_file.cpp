@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "solver/case/case_file.hpp"
 
 namespace fs = std::filesystem;

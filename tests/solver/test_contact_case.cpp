@@ -11,7 +11,7 @@
 
 #include <cstdio>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "solver/case/case_file.hpp"
 #include "solver/output/vtu_reader.hpp"
 #include "tests/solver/test_run_support.hpp"

@@ -16,7 +16,7 @@
 
 #include <cmath>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "tests/solver/solver_fixtures.hpp"
 #include "tests/solver/test_contact_support.hpp"
 

@@ -10,7 +10,7 @@
 
 #include <random>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "solver/contact/rigid_surface.hpp"
 
 namespace cushion::solver {

@@ -3,7 +3,7 @@
 // solution with a complex modulus (Kelvin-Voigt via Rayleigh beta, Maxwell via Prony terms).
 #include <gtest/gtest.h>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "material/neo_hookean.hpp"
 #include "material/viscoelastic.hpp"
 #include "solver/dynamics/sweep.hpp"

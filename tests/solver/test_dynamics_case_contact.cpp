@@ -9,7 +9,7 @@
 
 #include <complex>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "test_run_support.hpp"
 
 namespace cushion::solver::test {

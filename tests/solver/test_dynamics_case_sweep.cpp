@@ -10,8 +10,8 @@
 #include <cstdio>
 #include <complex>
 
-#include "material/input_error.hpp"
-#include "material/io/text_support.hpp"
+#include "io/input_error.hpp"
+#include "io/text_support.hpp"
 #include "material/viscoelastic.hpp"
 #include "test_run_support.hpp"
 

@@ -1,7 +1,7 @@
 // Bad input of the steady-state solver: missing density, non-positive frequency, bad DOF sets.
 #include <gtest/gtest.h>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "material/neo_hookean.hpp"
 #include "test_dynamics_support.hpp"
 

@@ -20,7 +20,7 @@
 #include <Eigen/Eigenvalues>
 #include <nlohmann/json.hpp>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "solver/analysis/dynamic_step.hpp"
 #include "test_run_support.hpp"
 

@@ -5,7 +5,7 @@
 
 #include <csignal>
 
-#include "material/io/csv.hpp"
+#include "io/csv.hpp"
 #include "solver/output/history_csv.hpp"
 #include "solver/output/interrupt.hpp"
 

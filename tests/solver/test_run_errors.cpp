@@ -5,7 +5,7 @@
 // converge (1 Newton iteration allowed on a nonlinear step), Ctrl-C (SIGINT raised in-process).
 #include <csignal>
 
-#include "material/input_error.hpp"
+#include "io/input_error.hpp"
 #include "solver/output/interrupt.hpp"
 #include "solver/output/vtu_reader.hpp"
 #include "test_run_support.hpp"

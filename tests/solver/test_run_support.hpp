@@ -8,7 +8,7 @@
 #include <fstream>
 #include <string>
 
-#include "material/io/csv.hpp"
+#include "io/csv.hpp"
 #include "solver/analysis/analysis.hpp"
 
 namespace cushion::solver::test {

@@ -13,7 +13,7 @@
 #include <random>
 
 #include "cli_runner.hpp"
-#include "material/io/csv.hpp"
+#include "io/csv.hpp"
 
 namespace fs = std::filesystem;
 

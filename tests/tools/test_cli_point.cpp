@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "material/io/csv.hpp"
+#include "io/csv.hpp"
 
 namespace fs = std::filesystem;
 

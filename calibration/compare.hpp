@@ -1,0 +1,109 @@
+#pragma once
+/// `cushion compare`: a material model against EVERY test of a campaign (calibration and validation),
+/// with the TIME-DOMAIN forward model of each test protocol (calibration::run_quasi_static and
+/// run_dynamic of lab.hpp: platen control, preload ramp, sines, sine-fit measurement), and error
+/// figures that locate the failure, next to the measurement noise estimated from the data itself.
+///
+/// Quasi-static test: the record's protocol (rate, peak strain, hold; starting virgin and relaxed,
+/// the campaign format records no preflex) at min(record rate, quasi_static_steps / ramp time) steps per
+/// second, interpolated to the record's samples. Regions: loading, unloading, low/mid/high thirds of the
+/// peak strain (both branches), and the hysteresis area (loop integral of stress d strain).
+/// Dynamic test: preload ramp at preload_rate_mm_min, then at each frequency `dynamic_cycles` sines of
+/// `dynamic_steps_per_cycle` steps, the last `dynamic_fit_cycles` sine-fitted (CHEAP schedule: the lab's
+/// 20 x 64 is ~4x dearer; the difference in the measured modulus is below the noise of typical data,
+/// see test_compare.cpp). Acceleration amplitude as written in the manifest, read as the test's
+/// amplitude_is (default peak-to-peak, paper 2.3), preload ramp at the test's preload_rate_mm_min (default
+/// CompareOptions::preload_rate_mm_min). Regions: low/mid/high thirds of the frequency list, each for |E*| [kPa] and phase [deg].
+///
+/// Noise estimates (data only, never the model):
+///   quasi-static: third differences d3 on each monotone branch (a local-polynomial high-pass: removes any
+///     quadratic trend), sigma = RMS(d3)/sqrt(20) over +-15 samples (the noise of a load cell grows with
+///     the force: local, so that each region is judged against its own noise);
+///   dynamic: scatter of |E*| and of the phase about a smooth least-squares polynomial in log f
+///     (cubic from 8 frequencies, quadratic from 5, else none), sigma = sqrt(SSR / (n - p)).
+/// NRMSE: quasi-static RMS / peak measured stress; |E*|: RMS / mean measured |E*|; phase: RMS / 90 deg.
+/// Units: internal mm, N, s, MPa; reported stresses/moduli in kPa, phases in degrees, strains nominal
+/// compression positive. The error and noise helpers are shared with the structure level (compare_metrics.hpp).
+/// Structure-level tests (kinds "indentation" and "dynamic_stiffness", compare_structure.hpp) are reported
+/// as TestCompare too, in N, mm, N/mm and degrees.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "calibration/campaign.hpp"
+#include "calibration/compare_metrics.hpp"
+#include "material/material.hpp"
+
+namespace cushion::calibration {
+
+struct CompareOptions {
+  int quasi_static_steps = 300;     ///< model steps per loading ramp at most (record rate if lower)
+  int dynamic_cycles = 6;           ///< cycles run per frequency by the model
+  int dynamic_fit_cycles = 3;       ///< last cycles sine-fitted
+  int dynamic_steps_per_cycle = 48;
+  double preload_rate_mm_min = 30.0;  ///< dynamic preload ramp (paper 2.3) of tests that give none
+  double noise_level_ratio = 1.5;   ///< error/noise at or below this: "at the noise level"
+};
+
+/// Data-only noise estimates of one test.
+struct TestNoise {
+  double stress = 0.0;   ///< quasi-static: RMS stress noise over the record [MPa]; indentation: force noise [N]
+  std::vector<double> stress_local;  ///< quasi-static: local noise per record sample [MPa] (RMS of d3 over +-15 samples)
+  double modulus = 0.0;  ///< dynamic: |E*| noise [MPa]; dynamic_stiffness: |K*| noise [N/mm]
+  double phase = 0.0;    ///< dynamic: phase noise [deg]
+  bool known = false;    ///< estimate available (enough samples)
+};
+
+struct TestCompare {
+  std::string name, kind, use;  ///< kind "quasi_static" | "dynamic" | "indentation" | "dynamic_stiffness"; use "calibration" | "validation"
+  double rate_mm_min = 0.0;     ///< quasi-static
+  double preload = 0.0;         ///< dynamic: nominal preload [-]
+  TestNoise noise;
+  std::vector<RegionError> regions;  ///< "all" first
+  /// Quasi-static curves: x = strain [-], measured/model stress [MPa] at the record's samples from the
+  /// start of loading; dynamic: x = frequency [Hz], measured/model |E*| [MPa] and phase [deg];
+  /// indentation: x = indentation [mm], force [N]; dynamic_stiffness: x = frequency [Hz], |K*| [N/mm], phase [deg].
+  std::vector<double> x, measured, model, measured_phase, model_phase;
+  std::vector<double> noise_local;    ///< quasi-static: local noise at each x [MPa] (indentation: [N])
+  std::size_t unload_begin = 0;       ///< quasi-static, indentation: index in x where unloading starts
+  double hysteresis_measured = 0.0, hysteresis_model = 0.0;  ///< loop area [MPa] (quasi-static), [N mm] (indentation)
+  std::string failure;                ///< the model run failed (message); regions empty then
+  /// RMS error over the whole test in noise units (dynamic: |E*| and phase combined) [-]; 0 if unknown.
+  double noise_ratio() const;
+  /// A load/unload curve (quasi_static, indentation) rather than a spectrum (dynamic, dynamic_stiffness).
+  bool is_curve() const { return kind == "quasi_static" || kind == "indentation"; }
+  const RegionError* region(const std::string& name) const;
+};
+
+struct CompareResult {
+  std::vector<TestCompare> tests;  ///< quasi-static tests first, then dynamic, in campaign order
+  std::vector<std::string> warnings;
+  double seconds = 0.0;
+  /// Every test with a known noise within options.noise_level_ratio of it.
+  bool at_noise_level(double ratio) const;
+};
+
+/// Data-only noise of every test (same order as CompareResult::tests).
+std::vector<TestNoise> estimate_noise(const Campaign& campaign);
+
+/// Model vs every test. `noise`: from estimate_noise (computed when empty). A test whose model run throws
+/// is reported with `failure` set; the others are still compared.
+CompareResult compare_campaign(const material::Material& model, const Campaign& campaign, const CompareOptions& options = {},
+                               const std::vector<TestNoise>& noise = {});
+
+/// Warnings when the material and the campaign do not describe the same specimen (density of the material
+/// file vs the campaign's specimen, more than 5% apart), empty when they agree or the material gives none.
+std::vector<std::string> specimen_warnings(double material_density, const Campaign& campaign);
+
+/// What the campaign's tests cannot tell apart, in words (empty when it has several rates and preloads):
+/// a single material-level test; one quasi-static rate (rate-dependent hysteresis, viscous or pneumatic, vs
+/// rate-independent, friction or Mullins); one dynamic preload (preload-dependent moduli); one indentation
+/// test (the same for the structure's hysteresis).
+std::vector<std::string> coverage_warnings(const Campaign& campaign);
+
+/// Noise-normalised residuals for least squares (diagnose): quasi-static (model - measured)/sigma at up to
+/// `quasi_static_points` evenly spread samples per test; dynamic (|E*| error)/sigma_E and (phase error)/sigma_phase
+/// per frequency. Tests without a noise estimate or with a failed run contribute nothing (the latter: huge values).
+std::vector<double> normalised_residuals(const CompareResult& result, int quasi_static_points = 100);
+
+}  // namespace cushion::calibration

@@ -1,0 +1,552 @@
+#include "calibration/diagnose.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <functional>
+#include <limits>
+#include <sstream>
+#include <thread>
+
+#include <ceres/ceres.h>
+#include <ceres/dynamic_numeric_diff_cost_function.h>
+
+#include "material/effect_catalog.hpp"
+#include "io/input_error.hpp"
+
+namespace cushion::calibration {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+std::string fmt(double v, int digits = 3) {
+  std::ostringstream o;
+  o << std::setprecision(digits) << v;
+  return o.str();
+}
+
+/// One fitted parameter: where it lives and how it is scaled.
+struct FreeParameter {
+  std::size_t effect = 0;  ///< index in the candidate's effect list
+  std::size_t base_term = npos;  ///< hyperfoam term whose mu this factor scales (base refit), else npos
+  std::size_t prony_term = npos; ///< Prony term whose a_i = g_i/(1 - sum g) this factor scales (base refit)
+  bool is_base() const { return base_term != npos || prony_term != npos; }
+  static constexpr std::size_t npos = static_cast<std::size_t>(-1);
+  const material::EffectParameterInfo* info = nullptr;
+  double lower = 0.0, upper = 0.0;  ///< bounds of u
+  double to_u(double x) const { return info->log_scale ? std::log10(x) : x / scale(); }
+  double to_x(double u) const { return info->log_scale ? std::pow(10.0, u) : u * scale(); }
+  double scale() const { return info->default_value != 0.0 ? std::abs(info->default_value) : 1.0; }
+};
+
+/// The material with the candidate effects and the campaign comparison it gives.
+class CandidateModel {
+ public:
+  CandidateModel(const material::MaterialSpec& base, std::vector<material::EffectSpec> effects, const Campaign& campaign,
+                 const std::vector<TestNoise>& noise, const DiagnoseOptions& options)
+      : base_(base), effects_(std::move(effects)), campaign_(campaign), noise_(noise), options_(options) {
+    for (std::size_t e = 0; e < effects_.size(); ++e) {
+      const material::EffectInfo* info = material::find_effect(effects_[e].kind);
+      for (const auto& p : info->parameters) {
+        if (!p.fit) continue;
+        FreeParameter f{e, FreeParameter::npos, FreeParameter::npos, &p};
+        if (p.log_scale) {
+          const double lo = std::max(p.min_exclusive ? p.min * (1 + 1e-12) + 1e-300 : p.min, p.default_value * 1e-4);
+          f.lower = std::log10(std::max(lo, 1e-300));
+          f.upper = std::log10(std::min(p.max, p.default_value * 1e4));
+        } else {
+          f.lower = (p.min_exclusive ? p.min + 1e-12 * std::max(1.0, std::abs(p.min)) : p.min) / f.scale();
+          f.upper = p.max / f.scale();
+        }
+        free_.push_back(f);
+        if (!effects_[e].parameters.count(p.name)) effects_[e].parameters[p.name] = p.default_value;
+      }
+    }
+  }
+
+  /// Adds a log10 factor in [-1, 1] on the mu of every hyperfoam term and on the relative modulus
+  /// a_i = g_i/(1 - sum g) of every Prony term of the base (the base-refit reference; no effect).
+  void free_base_moduli() {
+    static const material::EffectParameterInfo factor{"modulus_factor", "factor on a base modulus", 1.0, 0.1, 10.0,
+                                                      true, true, true};
+    for (std::size_t t = 0; t < base_.hyperfoam.size(); ++t) free_.push_back({0, t, FreeParameter::npos, &factor, -1.0, 1.0});
+    for (std::size_t t = 0; t < base_.prony.size(); ++t) free_.push_back({0, FreeParameter::npos, t, &factor, -1.0, 1.0});
+  }
+
+  const std::vector<FreeParameter>& free() const { return free_; }
+
+  std::vector<material::EffectSpec> effects_at(const double* u) const {
+    std::vector<material::EffectSpec> e = effects_;
+    for (std::size_t i = 0; i < free_.size(); ++i)
+      if (!free_[i].is_base()) e[free_[i].effect].parameters[free_[i].info->name] = free_[i].to_x(u[i]);
+    return e;
+  }
+  std::vector<double> start() const {
+    std::vector<double> u;
+    for (const auto& f : free_)
+      u.push_back(f.is_base()
+                      ? 0.0
+                      : std::clamp(f.to_u(effects_[f.effect].parameters.at(f.info->name)), f.lower, f.upper));
+    return u;
+  }
+
+  /// The spec with the effects at u (effects needing a viscoelastic model first).
+  material::MaterialSpec spec_at(const double* u) const {
+    material::MaterialSpec s = base_;
+    std::vector<double> a;  // Prony relative moduli, scaled, then back to g_i = a_i/(1 + sum a)
+    double g_sum = 0.0, a_sum = 0.0;
+    for (const auto& t : s.prony) g_sum += t.g;
+    for (const auto& t : s.prony) a.push_back(t.g / (1.0 - g_sum));
+    bool prony_scaled = false;
+    for (std::size_t i = 0; i < free_.size(); ++i) {
+      if (free_[i].base_term != FreeParameter::npos) s.hyperfoam[free_[i].base_term].mu *= free_[i].to_x(u[i]);
+      if (free_[i].prony_term != FreeParameter::npos) a[free_[i].prony_term] *= free_[i].to_x(u[i]), prony_scaled = true;
+    }
+    if (prony_scaled) {
+      for (double x : a) a_sum += x;
+      for (std::size_t k = 0; k < a.size(); ++k) s.prony[k].g = a[k] / (1.0 + a_sum);
+    }
+    for (const auto& e : effects_at(u)) {
+      if (material::find_effect(e.kind)->needs_viscoelastic)
+        s.effects.insert(s.effects.begin(), e);
+      else
+        s.effects.push_back(e);
+    }
+    return s;
+  }
+
+  /// Comparison at u; nullopt when the material cannot be built or a test run fails.
+  std::optional<CompareResult> compare_at(const double* u) const {
+    ++evaluations_;
+    try {
+      const material::MaterialDefinition def = material::build_material(spec_at(u), "candidate");
+      CompareResult r = compare_campaign(*def.model, campaign_, options_.compare, noise_);
+      for (const auto& t : r.tests)
+        if (!t.failure.empty()) return std::nullopt;
+      return r;
+    } catch (const std::exception&) {
+      return std::nullopt;
+    }
+  }
+  double chi2_at(const double* u) const {
+    const auto r = compare_at(u);
+    if (!r) return std::numeric_limits<double>::infinity();
+    double s = 0.0;
+    for (double x : normalised_residuals(*r, options_.quasi_static_points)) s += x * x;
+    return s;
+  }
+  bool residuals_at(const double* u, double* out, std::size_t n) const {
+    const auto r = compare_at(u);
+    if (!r) return false;
+    const std::vector<double> v = normalised_residuals(*r, options_.quasi_static_points);
+    if (v.size() != n) return false;
+    std::copy(v.begin(), v.end(), out);
+    return true;
+  }
+  int evaluations() const { return evaluations_; }
+
+ private:
+  material::MaterialSpec base_;
+  std::vector<material::EffectSpec> effects_;
+  const Campaign& campaign_;
+  const std::vector<TestNoise>& noise_;
+  const DiagnoseOptions& options_;
+  std::vector<FreeParameter> free_;
+  mutable std::atomic<int> evaluations_{0};
+};
+
+struct Residual {
+  const CandidateModel* model;
+  std::size_t n;
+  bool operator()(double const* const* p, double* r) const { return model->residuals_at(p[0], r, n); }
+};
+
+/// Coarse scan of each parameter in turn (others held), keeping the best value.
+void scan_start(const CandidateModel& m, std::vector<double>& u) {
+  double best = m.chi2_at(u.data());
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    const FreeParameter& f = m.free()[i];
+    std::vector<double> trial;
+    if (f.info->log_scale) {
+      for (int d = -3; d <= 3; ++d) trial.push_back(u[i] + d);
+    } else {
+      for (double s : {0.0, 0.3, 3.0, 10.0}) trial.push_back(u[i] * s);
+    }
+    const double keep = u[i];
+    double chosen = keep;
+    for (double t : trial) {
+      if (t < f.lower || t > f.upper || t == keep) continue;
+      u[i] = t;
+      const double c = m.chi2_at(u.data());
+      if (c < best) best = c, chosen = t;
+    }
+    u[i] = chosen;
+  }
+}
+
+CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector<material::EffectSpec>& start_effects,
+                           const Campaign& campaign, const std::vector<TestNoise>& noise, std::size_t n_residuals,
+                           double baseline_bic, const DiagnoseOptions& options, bool scan, bool refit_base = false) {
+  const auto t0 = Clock::now();
+  CandidateFit fit;
+  for (const auto& e : start_effects) fit.kinds.push_back(e.kind);
+  CandidateModel model(base, start_effects, campaign, noise, options);
+  if (refit_base) {
+    model.free_base_moduli();
+    fit.base_refitted = true;
+    if (start_effects.empty()) fit.kinds.push_back("base refit (hyperfoam and Prony moduli)");
+  }
+  std::vector<double> u = model.start();
+  fit.parameters = static_cast<int>(u.size());
+  try {
+    if (scan) scan_start(model, u);
+    if (!std::isfinite(model.chi2_at(u.data())))
+      throw std::runtime_error("the model with this effect fails at every start value tried");
+    ceres::Problem problem;
+    ceres::NumericDiffOptions nd;
+    nd.relative_step_size = 1e-5;
+    auto* cost = new ceres::DynamicNumericDiffCostFunction<Residual, ceres::FORWARD>(
+        new Residual{&model, n_residuals}, ceres::TAKE_OWNERSHIP, nd);
+    cost->AddParameterBlock(static_cast<int>(u.size()));
+    cost->SetNumResiduals(static_cast<int>(n_residuals));
+    problem.AddResidualBlock(cost, nullptr, u.data());
+    for (std::size_t i = 0; i < u.size(); ++i) {
+      problem.SetParameterLowerBound(u.data(), static_cast<int>(i), model.free()[i].lower);
+      problem.SetParameterUpperBound(u.data(), static_cast<int>(i), model.free()[i].upper);
+    }
+    ceres::Solver::Options so;
+    so.linear_solver_type = ceres::DENSE_QR;
+    so.max_num_iterations = options.max_iterations;
+    so.function_tolerance = 1e-6;
+    so.parameter_tolerance = 1e-6;
+    so.logging_type = ceres::SILENT;
+    ceres::Solver::Summary summary;
+    ceres::Solve(so, &problem, &summary);
+    fit.converged = summary.IsSolutionUsable();
+    fit.message = summary.BriefReport();
+    if (summary.termination_type == ceres::NO_CONVERGENCE)
+      fit.warning = "did not converge within " + std::to_string(options.max_iterations) +
+                    " iterations; ranked with the best parameters found (chi2/N may still fall: raise max_iterations)";
+    const auto r = model.compare_at(u.data());
+    if (!r) throw std::runtime_error("the model run fails at the fitted parameters");
+    fit.compare = *r;
+    fit.chi2 = 0.0;
+    for (double x : normalised_residuals(fit.compare, options.quasi_static_points)) fit.chi2 += x * x;
+    fit.bic = fit.chi2 + fit.parameters * std::log(static_cast<double>(n_residuals));
+    fit.delta_bic = baseline_bic - fit.bic;
+    fit.effects = model.effects_at(u.data());
+    fit.fitted = model.spec_at(u.data());
+    if (!fit.converged) fit.message = "did not converge: " + fit.message;
+  } catch (const std::exception& e) {
+    fit.converged = false;
+    fit.message = std::string("failed: ") + e.what();
+    fit.delta_bic = -std::numeric_limits<double>::infinity();
+  }
+  fit.evaluations = model.evaluations();
+  fit.seconds = seconds_since(t0);
+  return fit;
+}
+
+/// Runs jobs on `threads` threads; results in job order.
+std::vector<CandidateFit> run_all(const std::vector<std::function<CandidateFit()>>& jobs, int threads) {
+  std::vector<CandidateFit> out(jobs.size());
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    for (std::size_t i; (i = next++) < jobs.size();) out[i] = jobs[i]();
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < std::max(1, threads); ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+  return out;
+}
+
+double chi2_of(const CompareResult& r, int points) {
+  double s = 0.0;
+  for (double x : normalised_residuals(r, points)) s += x * x;
+  return s;
+}
+
+}  // namespace
+
+std::string CandidateFit::name() const {
+  std::string s;
+  for (const auto& k : kinds) s += (s.empty() ? "" : " + ") + k;
+  return s;
+}
+
+std::vector<std::string> signature_evidence(const CompareResult& b) {
+  std::vector<std::string> ev;
+  std::vector<const TestCompare*> qs, dyn;
+  for (const auto& t : b.tests) {
+    if (!t.failure.empty() || !t.noise.known) continue;
+    (t.kind == "quasi_static" ? qs : dyn).push_back(&t);
+  }
+  std::sort(qs.begin(), qs.end(), [](auto a, auto c) { return a->rate_mm_min < c->rate_mm_min; });
+  // Rate dependence of the hysteresis the model misses.
+  if (qs.size() >= 2) {
+    std::ostringstream o;
+    o << "hysteresis (loop area) measured vs model:";
+    for (const auto* t : qs)
+      o << " " << fmt(t->rate_mm_min) << " mm/min " << fmt(t->hysteresis_measured * 1e3) << " vs "
+        << fmt(t->hysteresis_model * 1e3) << " kPa;";
+    const RegionError* slow = qs.front()->region("hysteresis_area");
+    const RegionError* fast = qs.back()->region("hysteresis_area");
+    const double ms = -slow->bias, mf = -fast->bias;  // missing = measured - model
+    const bool sig_s = std::abs(ms) > 3.0 * slow->noise, sig_f = std::abs(mf) > 3.0 * fast->noise;
+    if (!sig_s && !sig_f)
+      o << " the model has the right hysteresis at every rate (within 3x noise)";
+    else if (sig_s && ms > 0 && std::abs(mf) < 2.0 * std::abs(ms) && mf > 0.5 * ms)
+      o << " the model misses " << fmt(ms * 1e0) << " kPa at " << fmt(qs.front()->rate_mm_min) << " mm/min and " << fmt(mf)
+        << " kPa at " << fmt(qs.back()->rate_mm_min)
+        << " mm/min: a missing dissipation that does NOT vanish at slow rates (rate-independent)";
+    else if (sig_f && mf > 0 && mf > 2.0 * std::max(ms, 0.0))
+      o << " the missing hysteresis grows with rate (" << fmt(ms) << " -> " << fmt(mf)
+        << " kPa): a missing RATE-DEPENDENT dissipation";
+    else
+      o << " hysteresis error " << fmt(-ms) << " kPa (slowest) and " << fmt(-mf) << " kPa (fastest), model - measured";
+    ev.push_back(o.str());
+  }
+  // Loading vs unloading (first loading vs unloading/reloading below the previous maximum).
+  for (const auto* t : qs) {
+    const RegionError *l = t->region("loading"), *u = t->region("unloading");
+    if (l->ratio() > 2.0 || u->ratio() > 2.0)
+      ev.push_back(t->name + ": first loading error " + fmt(l->rms) + " kPa (" + fmt(l->ratio(), 2) + "x noise, bias " +
+                   fmt(l->bias) + "), unloading error " + fmt(u->rms) + " kPa (" + fmt(u->ratio(), 2) + "x noise, bias " +
+                   fmt(u->bias) + ")" +
+                   (u->ratio() > 2.0 * std::max(1.0, l->ratio()) ? ": the failure is on unloading, first loading fits" : ""));
+  }
+  // Phase and modulus error vs frequency, per dynamic test.
+  for (const auto* t : dyn) {
+    const RegionError *pl = t->region("band_low_phase"), *ph = t->region("band_high_phase");
+    const RegionError *ml = t->region("band_low_modulus"), *mh = t->region("band_high_modulus");
+    std::ostringstream o;
+    o << t->name << ": phase error (model - measured) " << fmt(pl->bias) << " deg in the low band, " << fmt(ph->bias)
+      << " deg in the high band (noise " << fmt(t->noise.phase) << " deg)";
+    if (std::abs(ph->bias - pl->bias) > 3.0 * t->noise.phase && std::abs(ph->bias) > std::abs(pl->bias))
+      o << ": the phase error GROWS with frequency";
+    else if (std::abs(pl->bias) > 3.0 * t->noise.phase && std::abs(ph->bias - pl->bias) < 0.5 * std::abs(pl->bias))
+      o << ": a frequency-INDEPENDENT loss is missing or extra";
+    o << "; |E*| error " << fmt(ml->bias) << " -> " << fmt(mh->bias) << " kPa (noise " << fmt(t->noise.modulus * 1e3) << ")";
+    ev.push_back(o.str());
+  }
+  // Preload dependence of the dynamic modulus.
+  if (dyn.size() >= 2) {
+    std::ostringstream o;
+    o << "|E*| bias (model - measured) by preload:";
+    double lo = 1e300, hi = -1e300;
+    for (const auto* t : dyn) {
+      const RegionError* a = t->region("all_modulus");
+      const double rel = a->bias / (a->nrmse > 0 ? a->rms / a->nrmse : 1.0);
+      o << " " << fmt(100 * t->preload) << "% preload " << fmt(100 * rel, 2) << "%;";
+      lo = std::min(lo, a->bias / std::max(a->noise, 1e-300));
+      hi = std::max(hi, a->bias / std::max(a->noise, 1e-300));
+    }
+    if (hi - lo > 3.0) o << " the modulus error DEPENDS ON THE PRELOAD (" << fmt(hi - lo, 2) << " noise units apart)";
+    else o << " no preload dependence beyond noise";
+    ev.push_back(o.str());
+  }
+  return ev;
+}
+
+Diagnosis diagnose(const material::MaterialSpec& baseline, const Campaign& campaign, const DiagnoseOptions& options,
+                   std::ostream& log) {
+  const auto t0 = Clock::now();
+  Diagnosis d;
+  d.extended = baseline;
+  const material::MaterialDefinition def = material::build_material(baseline, "baseline material");
+  const std::size_t tests = campaign.quasi_static.size() + campaign.dynamic.size();
+  if (tests < 2)
+    d.warnings.push_back(
+        "the campaign has only " + std::to_string(tests) +
+        " test: rate effects (viscous, pneumatic) cannot be told from rate-independent ones (friction, Mullins) "
+        "without two rates, nor preload dependence without two preloads; the ranking below rests on one test");
+  if (campaign.quasi_static.size() == 1)
+    d.warnings.push_back("one quasi-static rate: rate dependence of the hysteresis cannot be observed");
+  if (campaign.quasi_static.empty())
+    d.warnings.push_back("no quasi-static test: loading vs unloading and hysteresis signatures unavailable");
+  if (campaign.dynamic.size() == 1)
+    d.warnings.push_back("one dynamic preload: preload dependence of the modulus cannot be observed");
+  if (campaign.dynamic.empty()) d.warnings.push_back("no dynamic test: frequency signatures unavailable");
+
+  d.noise = estimate_noise(campaign);
+  d.baseline = compare_campaign(*def.model, campaign, options.compare, d.noise);
+  for (const auto& w : d.baseline.warnings) d.warnings.push_back(w);
+  for (const auto& t : d.baseline.tests)
+    if (!t.failure.empty())
+      throw InputError("baseline material: the model run of test " + t.name + " fails: " + t.failure);
+  const std::vector<double> r0 = normalised_residuals(d.baseline, options.quasi_static_points);
+  d.residuals = r0.size();
+  d.baseline_chi2 = chi2_of(d.baseline, options.quasi_static_points);
+  d.baseline_bic = d.baseline_chi2;  // k = 0 added parameters
+  d.evidence = signature_evidence(d.baseline);
+  d.at_noise_level = d.baseline.at_noise_level(options.compare.noise_level_ratio);
+  log << "diagnose: baseline compared on " << tests << " tests in " << fmt(d.baseline.seconds, 2) << " s, chi2/N "
+      << fmt(d.baseline_chi2 / std::max<std::size_t>(1, d.residuals)) << "\n";
+  if (d.residuals == 0) {
+    d.warnings.push_back("no test has a noise estimate: cannot judge any effect against noise");
+    d.verdict = "Cannot diagnose: no test has enough samples to estimate the measurement noise.";
+    d.seconds = seconds_since(t0);
+    return d;
+  }
+  if (d.at_noise_level) {
+    double worst = 0.0;
+    std::string name;
+    for (const auto& t : d.baseline.tests)
+      if (t.noise_ratio() > worst) worst = t.noise_ratio(), name = t.name;
+    d.verdict = "No effect is missing: every test is within " + fmt(options.compare.noise_level_ratio, 2) +
+                "x its measurement noise (worst: " + name + " at " + fmt(worst, 3) +
+                "x). Adding parameters cannot be justified by these data.";
+    d.fragment = nullptr;
+    d.seconds = seconds_since(t0);
+    return d;
+  }
+
+  // Singles.
+  std::vector<std::vector<material::EffectSpec>> singles;
+  for (const auto& info : material::effect_catalog()) {
+    if (!options.candidates.empty() &&
+        std::find(options.candidates.begin(), options.candidates.end(), info.kind) == options.candidates.end())
+      continue;
+    if (std::any_of(baseline.effects.begin(), baseline.effects.end(), [&](const auto& e) { return e.kind == info.kind; }))
+      continue;
+    if (info.needs_viscoelastic && baseline.prony.empty()) {
+      d.warnings.push_back(info.kind + ": not a candidate (needs a viscoelastic material)");
+      continue;
+    }
+    singles.push_back({material::EffectSpec{info.kind, {}}});
+  }
+  const bool base_ref = baseline.base == material::MaterialSpec::Base::hyperfoam && !baseline.hyperfoam.empty();
+  auto job = [&](std::vector<material::EffectSpec> effects, bool scan) {
+    return [&, effects, scan] {
+      return fit_candidate(baseline, effects, campaign, d.noise, d.residuals, d.baseline_bic, options, scan,
+                           options.joint_base && base_ref);
+    };
+  };
+  std::vector<std::function<CandidateFit()>> jobs;
+  for (const auto& s : singles) jobs.push_back(job(s, true));
+  // Reference: the base refitted WITHOUT any effect (hyperfoam moduli only). An effect must beat it too,
+  // else the residual is as well explained by a base calibration that is slightly off.
+  if (base_ref)
+    jobs.push_back([&] {
+      return fit_candidate(baseline, {}, campaign, d.noise, d.residuals, d.baseline_bic, options, true, true);
+    });
+  std::vector<CandidateFit> fits = run_all(jobs, options.threads);
+  if (base_ref) {
+    d.base_refit = std::move(fits.back());
+    fits.pop_back();
+    log << "diagnose: " << d.base_refit->name() << ": dBIC " << fmt(d.base_refit->delta_bic, 4) << ", "
+        << d.base_refit->evaluations << " runs, " << fmt(d.base_refit->seconds, 2) << " s\n";
+  }
+  for (const auto& f : fits)
+    log << "diagnose: " << f.name() << ": dBIC " << fmt(f.delta_bic, 4) << ", " << f.evaluations << " runs, "
+        << fmt(f.seconds, 2) << " s" << (f.converged ? "" : " (" + f.message + ")") << "\n";
+
+  // Pairs of the best singles.
+  std::vector<std::size_t> order(fits.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return fits[a].delta_bic > fits[b].delta_bic; });
+  std::vector<std::size_t> top;
+  // Pairs only when the best single leaves a test beyond noise (else nothing is left for a second effect).
+  const bool single_enough = !order.empty() && fits[order.front()].converged &&
+                             fits[order.front()].compare.at_noise_level(options.compare.noise_level_ratio);
+  if (!single_enough)
+  for (std::size_t i : order)
+    if (fits[i].converged && fits[i].delta_bic > 0 && static_cast<int>(top.size()) < options.pairs_from) top.push_back(i);
+  jobs.clear();
+  for (std::size_t a = 0; a < top.size(); ++a)
+    for (std::size_t b = a + 1; b < top.size(); ++b) {
+      std::vector<material::EffectSpec> e = fits[top[a]].effects;
+      e.push_back(fits[top[b]].effects.front());
+      jobs.push_back(job(e, false));
+    }
+  std::vector<CandidateFit> pairs = run_all(jobs, options.threads);
+  for (const auto& f : pairs)
+    log << "diagnose: " << f.name() << ": dBIC " << fmt(f.delta_bic, 4) << ", " << f.evaluations << " runs, "
+        << fmt(f.seconds, 2) << " s\n";
+
+  const double base_gain = d.base_refit && d.base_refit->converged ? std::max(0.0, d.base_refit->delta_bic) : 0.0;
+  for (auto& f : fits) f.supported = f.converged && f.delta_bic > base_gain + options.strong_evidence;
+  const double best_single = top.empty() ? 0.0 : fits[top.front()].delta_bic;
+  for (auto& f : pairs)
+    f.supported = f.converged && f.delta_bic > std::max(best_single, base_gain) + options.strong_evidence;
+  for (auto& f : fits) d.candidates.push_back(std::move(f));
+  for (auto& f : pairs) d.candidates.push_back(std::move(f));
+  for (const auto& f : d.candidates)
+    if (!f.converged) d.warnings.push_back("candidate " + f.name() + ": " + f.message);
+    else if (!f.warning.empty()) d.warnings.push_back("candidate " + f.name() + ": " + f.warning);
+  if (d.base_refit && !d.base_refit->converged)
+    d.warnings.push_back("candidate " + d.base_refit->name() + ": " + d.base_refit->message);
+  std::stable_sort(d.candidates.begin(), d.candidates.end(), [](const CandidateFit& a, const CandidateFit& b) {
+    if (a.supported != b.supported) return a.supported;
+    return a.delta_bic > b.delta_bic;
+  });
+
+  if (!d.candidates.empty() && d.candidates.front().supported) {
+    d.winner = 0;
+    const CandidateFit& w = d.candidates.front();
+    d.winner_at_noise_level = w.compare.at_noise_level(options.compare.noise_level_ratio);
+    nlohmann::json effects = nlohmann::json::array();
+    for (const auto& e : baseline.effects) {
+      nlohmann::json j{{"kind", e.kind}};
+      for (const auto& [k, v] : e.parameters) j[k] = v;
+      effects.push_back(j);
+    }
+    for (const auto& e : w.effects) {
+      nlohmann::json j{{"kind", e.kind}};
+      for (const auto& [k, v] : e.parameters) j[k] = v;
+      if (material::find_effect(e.kind)->needs_viscoelastic) effects.insert(effects.begin(), j);
+      else effects.push_back(j);
+    }
+    d.fragment = {{"effects", effects}};
+    d.extended = w.fitted;
+    std::ostringstream o;
+    o << "Add " << w.name() << " (dBIC " << fmt(w.delta_bic, 4) << " for " << w.parameters
+      << " parameters; chi2/N " << fmt(d.baseline_chi2 / d.residuals) << " -> " << fmt(w.chi2 / d.residuals) << "). ";
+    if (w.base_refitted)
+      o << "Fitted together with the base moduli (joint): use material_extended.json, whose hyperfoam mu_i and Prony "
+           "g_i are refitted too; the fragment alone on the old base is not the fitted model. ";
+    if (d.winner_at_noise_level) {
+      o << "With it every test falls to the noise level (within " << fmt(options.compare.noise_level_ratio, 2) << "x).";
+    } else {
+      o << "Tests still beyond noise after adding it:";
+      for (const auto& t : w.compare.tests)
+        if (t.noise_ratio() > options.compare.noise_level_ratio) o << " " << t.name << " (" << fmt(t.noise_ratio(), 3) << "x)";
+      o << ": the base calibration is off there, or a further effect outside the catalogue is missing (rerun `cushion fit`, "
+           "then diagnose again).";
+    }
+    d.verdict = o.str();
+  } else {
+    d.fragment = nullptr;
+    std::ostringstream o;
+    if (base_gain > options.strong_evidence) {
+      const CandidateFit& b = *d.base_refit;
+      o << "No effect can be told from a base calibration that is slightly off: refitting only the base moduli "
+           "(hyperfoam mu_i and Prony g_i, no effect) gives dBIC "
+        << fmt(b.delta_bic, 4) << " (chi2/N " << fmt(d.baseline_chi2 / d.residuals) << " -> " << fmt(b.chi2 / d.residuals)
+        << (b.compare.at_noise_level(options.compare.noise_level_ratio) ? ", every test at the noise level" : "")
+        << ") and no catalogue effect beats it by dBIC > " << fmt(options.strong_evidence);
+      if (!d.candidates.empty() && std::isfinite(d.candidates.front().delta_bic))
+        o << " (best: " << d.candidates.front().name() << ", dBIC " << fmt(d.candidates.front().delta_bic, 4) << ")";
+      o << ". Recalibrate the base first (rerun `cushion fit`, e.g. with --refit-on all), then diagnose again";
+      if (!options.joint_base)
+        o << "; if the baseline was fitted on this same campaign, the fit may have absorbed the effect: rerun with "
+             "--joint-base (each effect fitted together with the base moduli)";
+      o << ".";
+    } else {
+      o << "The model fails beyond noise, but no catalogue effect reduces the penalised error convincingly (dBIC > "
+        << fmt(options.strong_evidence) << "): the base calibration is the first suspect (rerun `cushion fit`, e.g. with "
+        << "--refit-on all).";
+    }
+    d.verdict = o.str();
+  }
+  d.seconds = seconds_since(t0);
+  return d;
+}
+
+}  // namespace cushion::calibration

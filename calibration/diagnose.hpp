@@ -1,0 +1,107 @@
+#pragma once
+/// `cushion diagnose`: which physical effect of the catalogue (material/effect_catalog.hpp) is missing
+/// from a calibrated material, judged on every test of a campaign (calibration and validation alike).
+///
+/// Method (generic: no effect is known by name here):
+///  1. Baseline: compare_campaign (compare.hpp) with the data-only noise estimates. If every test is
+///     within `compare.noise_level_ratio` of its noise, the verdict is "no effect is missing" and no
+///     candidate is fitted (nothing is left to explain).
+///  2. Candidates: each catalogue effect not already in the material (needs_viscoelastic ones only on a
+///     Prony material). Refit ONLY the effect's parameters flagged `fit` (the base calibration is kept as
+///     is: the baseline is assumed calibrated; a wrong base shows as a remaining failure after the best
+///     effect), or with joint_base the effect's parameters and the base-refit factors together (a
+///     baseline fitted on data that contain the effect). Parameters are fitted as log10(x) when flagged log_scale, else x/default; bounds: the
+///     catalogue range, and 4 decades either side of the default for log-scale ones. Start: a coarse scan
+///     per parameter (log-scale: default x 10^{-3..3}; else default x {0, 0.3, 1, 3, 10}), then Ceres
+///     bounded Levenberg-Marquardt with forward-difference Jacobian on the noise-normalised residuals
+///     (compare.hpp normalised_residuals). Candidates run on `threads` threads.
+///  3. Pairs (only when the best single leaves some test beyond noise): the `pairs_from` best singles
+///     combined two by two, started from their single fits.
+///  4. Penalised figure: BIC = chi2 + k ln N (chi2: sum of squared noise-normalised residuals, N their
+///     number, k the fitted parameters); dBIC = BIC_baseline - BIC_candidate (> 0: better). A candidate
+///     is SUPPORTED when dBIC > strong_evidence (Kass & Raftery: > 10 is very strong) AND it beats by
+///     strong_evidence the base-refit reference (the base moduli refitted without effect: one log10
+///     factor in [-1, 1] on each hyperfoam mu_i and on each Prony a_i = g_i/(1 - sum g)): a residual that a slightly different base explains as well is not
+///     evidence of a missing effect. A pair is preferred to the best single only when its dBIC exceeds the
+///     single's by strong_evidence too.
+///  5. Verdict: the best supported candidate, its error per test and region after the refit, whether
+///     every test then lies at the noise level, the evidence in words (data signatures: rate dependence
+///     of the hysteresis, loading vs unloading, phase and modulus error vs frequency, preload dependence
+///     of the dynamic modulus), and the material-file fragment that adds it.
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "calibration/compare.hpp"
+#include "material/io/material_file.hpp"
+
+namespace cushion::calibration {
+
+struct DiagnoseOptions {
+  CompareOptions compare;
+  int quasi_static_points = 100;  ///< residual samples per quasi-static test
+  int max_iterations = 12;        ///< Ceres iterations per candidate
+  int pairs_from = 3;             ///< best singles combined in pairs
+  double strong_evidence = 10.0;  ///< dBIC threshold [-]
+  int threads = 2;
+  std::vector<std::string> candidates;  ///< restrict to these kinds (empty: the whole catalogue)
+  /// Fit every candidate together with the base-refit factors (log10 factor in [-1, 1] on each hyperfoam
+  /// mu_i and Prony a_i) instead of on the base as given. For a baseline calibrated (`cushion fit`) on data
+  /// that contain the missing effect: the fit has absorbed part of it into the base moduli, which the
+  /// candidate must be free to give back. The reference is then the base refit alone (same factors, no
+  /// effect), so the criterion is the same: an effect must beat it by strong_evidence. Slower (8 more
+  /// parameters per candidate).
+  bool joint_base = false;
+};
+
+struct CandidateFit {
+  std::vector<std::string> kinds;          ///< one effect, or a pair
+  std::vector<material::EffectSpec> effects;  ///< the candidate effects with fitted parameters (file units)
+  int parameters = 0;                      ///< k
+  bool converged = false;
+  std::string message;                     ///< Ceres report, or why the candidate failed
+  std::string warning;                     ///< usable but not converged (iteration limit), else empty
+  double chi2 = 0.0, bic = 0.0, delta_bic = 0.0;
+  bool supported = false;
+  CompareResult compare;                   ///< every test with the candidate added
+  material::MaterialSpec fitted;           ///< the baseline with the candidate at its fitted parameters
+                                           ///< (and the base moduli refitted, joint_base or the base refit)
+  bool base_refitted = false;              ///< the base moduli were fitted too
+  int evaluations = 0;
+  double seconds = 0.0;
+  std::string name() const;                ///< "kind" or "kind + kind"
+};
+
+struct Diagnosis {
+  CompareResult baseline;
+  std::vector<TestNoise> noise;
+  std::size_t residuals = 0;               ///< N
+  double baseline_chi2 = 0.0, baseline_bic = 0.0;
+  bool at_noise_level = false;             ///< the baseline already at the noise level
+  std::vector<CandidateFit> candidates;    ///< ranked, largest dBIC first
+  /// Reference fit: the base moduli (hyperfoam mu_i, Prony a_i) refitted WITHOUT any effect. An
+  /// effect is supported only when its dBIC exceeds this one's by strong_evidence as well.
+  std::optional<CandidateFit> base_refit;
+  std::optional<std::size_t> winner;       ///< index into candidates
+  bool winner_at_noise_level = false;
+  std::string verdict;                     ///< one paragraph a person acts on
+  std::vector<std::string> evidence;       ///< data signatures in words
+  std::vector<std::string> warnings;       ///< bad input, failed candidates
+  nlohmann::json fragment;                 ///< {"effects": [...]} to put in the material file (null: none)
+  material::MaterialSpec extended;         ///< the baseline plus the winner (== baseline when none)
+  double seconds = 0.0;
+};
+
+/// Runs the method above. Bad input does not throw: a campaign with one test, or without tests of a
+/// kind, is diagnosed with a warning saying what cannot be told apart; a candidate that fails is
+/// reported with its message; one stopped by max_iterations is still ranked, with a warning naming it. Throws InputError only when the baseline material cannot be built.
+Diagnosis diagnose(const material::MaterialSpec& baseline, const Campaign& campaign, const DiagnoseOptions& options,
+                   std::ostream& log);
+
+/// The evidence lines from a comparison (data signatures; exposed for tests).
+std::vector<std::string> signature_evidence(const CompareResult& baseline);
+
+}  // namespace cushion::calibration

@@ -1,0 +1,131 @@
+#include "calibration/diagnose_output.hpp"
+
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "calibration/compare_output.hpp"
+
+#include "io/text_support.hpp"
+
+namespace cushion::calibration {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string fmt(double v, int digits = 3) {
+  std::ostringstream o;
+  o << std::setprecision(digits) << v;
+  return o.str();
+}
+
+nlohmann::json effects_json(const std::vector<material::EffectSpec>& effects) {
+  nlohmann::json a = nlohmann::json::array();
+  for (const auto& e : effects) {
+    nlohmann::json j{{"kind", e.kind}};
+    for (const auto& [k, v] : e.parameters) j[k] = v;
+    a.push_back(j);
+  }
+  return a;
+}
+
+}  // namespace
+
+nlohmann::json diagnosis_json(const Diagnosis& d) {
+  nlohmann::json j;
+  j["verdict"] = d.verdict;
+  j["at_noise_level"] = d.at_noise_level;
+  j["residuals"] = d.residuals;
+  j["baseline_chi2"] = d.baseline_chi2;
+  j["evidence"] = d.evidence;
+  j["warnings"] = d.warnings;
+  j["seconds"] = d.seconds;
+  j["baseline"] = compare_json(d.baseline, "baseline");
+  j["winner"] = d.winner ? nlohmann::json(d.candidates[*d.winner].name()) : nlohmann::json(nullptr);
+  j["winner_at_noise_level"] = d.winner_at_noise_level;
+  j["fragment"] = d.fragment;
+  if (d.base_refit)
+    j["base_refit"] = {{"name", d.base_refit->name()}, {"parameters", d.base_refit->parameters},
+                       {"chi2", d.base_refit->chi2}, {"converged", d.base_refit->converged},
+                       {"delta_bic", std::isfinite(d.base_refit->delta_bic) ? nlohmann::json(d.base_refit->delta_bic)
+                                                                            : nlohmann::json(nullptr)}};
+  j["candidates"] = nlohmann::json::array();
+  for (std::size_t i = 0; i < d.candidates.size(); ++i) {
+    const CandidateFit& c = d.candidates[i];
+    nlohmann::json jc{{"rank", i + 1},           {"name", c.name()},        {"parameters", c.parameters},
+                      {"converged", c.converged}, {"supported", c.supported}, {"message", c.message},
+                      {"chi2", c.chi2},           {"delta_bic", std::isfinite(c.delta_bic) ? nlohmann::json(c.delta_bic) : nlohmann::json(nullptr)},
+                      {"evaluations", c.evaluations}, {"seconds", c.seconds}, {"effects", effects_json(c.effects)}};
+    if (!c.compare.tests.empty()) jc["compare"] = compare_json(c.compare, c.name());
+    j["candidates"].push_back(jc);
+  }
+  return j;
+}
+
+std::string diagnosis_markdown(const Diagnosis& d) {
+  std::ostringstream o;
+  o << "# cushion diagnose\n\n## Verdict\n\n" << d.verdict << "\n";
+  if (!d.warnings.empty()) {
+    o << "\n## Warnings\n\n";
+    for (const auto& w : d.warnings) o << "- " << w << "\n";
+  }
+  o << "\n## Baseline vs every test\n\n" << compare_table(d.baseline);
+  o << "\n## Evidence in the data (signatures)\n\n";
+  for (const auto& e : d.evidence) o << "- " << e << "\n";
+  if (!d.candidates.empty()) {
+    o << "\n## Candidates (refit of the effect's parameters only; base calibration kept; ref: the base refitted without effect)\n\n"
+      << "dBIC = BIC(baseline) - BIC(candidate), BIC = chi2 + k ln N on noise-normalised residuals, N = " << d.residuals
+      << ", baseline chi2/N = " << fmt(d.baseline_chi2 / std::max<std::size_t>(1, d.residuals)) << ".\n\n";
+    std::vector<std::string> names;
+    for (const auto& t : d.baseline.tests) names.push_back(t.name);
+    o << "| rank | candidate | k | dBIC | chi2/N |";
+    for (const auto& n : names) o << " " << n << " |";
+    o << " status |\n|---|---|---|---|---|";
+    for (std::size_t i = 0; i < names.size(); ++i) o << "---|";
+    o << "---|\n| - | baseline | 0 | 0 | " << fmt(d.baseline_chi2 / d.residuals) << " |";
+    for (const auto& t : d.baseline.tests) o << " " << fmt(t.noise_ratio(), 3) << " |";
+    o << " |\n";
+    if (d.base_refit) {  // the reference every effect must beat
+      const CandidateFit& b = *d.base_refit;
+      o << "| ref | " << b.name() << " | " << b.parameters << " | " << (std::isfinite(b.delta_bic) ? fmt(b.delta_bic, 4) : "-")
+        << " | " << (b.compare.tests.empty() ? "-" : fmt(b.chi2 / d.residuals)) << " |";
+      for (std::size_t t = 0; t < names.size(); ++t)
+        o << " " << (t < b.compare.tests.size() ? fmt(b.compare.tests[t].noise_ratio(), 3) : "-") << " |";
+      o << " an effect must beat this by the evidence threshold |\n";
+    }
+    for (std::size_t i = 0; i < d.candidates.size(); ++i) {
+      const CandidateFit& c = d.candidates[i];
+      o << "| " << i + 1 << " | " << c.name() << " | " << c.parameters << " | "
+        << (std::isfinite(c.delta_bic) ? fmt(c.delta_bic, 4) : "-") << " | "
+        << (c.compare.tests.empty() ? "-" : fmt(c.chi2 / d.residuals)) << " |";
+      for (std::size_t t = 0; t < names.size(); ++t)
+        o << " " << (t < c.compare.tests.size() ? fmt(c.compare.tests[t].noise_ratio(), 3) : "-") << " |";
+      o << " " << (c.supported ? "supported" : c.converged ? "not supported" : c.message) << " |\n";
+    }
+    o << "\n(per-test columns: RMS error / measurement noise; 1 = noise level)\n";
+  }
+  if (d.winner) {
+    const CandidateFit& w = d.candidates[*d.winner];
+    o << "\n## Error per test and region with " << w.name() << "\n\n" << compare_table(w.compare);
+    o << "\n## Change to make: add to the material file\n\n```json\n" << d.fragment.dump(2) << "\n```\n"
+      << "\n(material_extended.json is the baseline with this change; run `cushion compare material_extended.json ...`.)\n";
+  }
+  return o.str();
+}
+
+void write_diagnosis_outputs(const Diagnosis& d, const fs::path& dir, const std::string& gnuplot) {
+  fs::create_directories(dir);
+  io::write_file_atomically(dir / "report.json", diagnosis_json(d).dump(2) + "\n");
+  io::write_file_atomically(dir / "diagnosis.md", diagnosis_markdown(d));
+  write_compare_outputs(d.baseline, "baseline", dir / "baseline", gnuplot);
+  fs::remove(dir / "fragment.json");
+  fs::remove(dir / "material_extended.json");
+  if (d.winner) {
+    io::write_file_atomically(dir / "fragment.json", d.fragment.dump(2) + "\n");
+    material::write_material_file(d.extended, dir / "material_extended.json");
+    write_compare_outputs(d.candidates[*d.winner].compare, d.candidates[*d.winner].name(), dir / "extended", gnuplot);
+  }
+}
+
+}  // namespace cushion::calibration

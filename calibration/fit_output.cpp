@@ -1,0 +1,175 @@
+#include "calibration/fit_output.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <numbers>
+
+#include "calibration/abaqus_cards.hpp"
+#include "calibration/report_fit.hpp"
+#include "io/input_error.hpp"
+
+#include "io/text_support.hpp"
+
+namespace cushion::calibration {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::vector<double> kpa(const std::vector<double>& mpa) {
+  std::vector<double> out;
+  for (double x : mpa) out.push_back(x * 1e3);
+  return out;
+}
+
+/// Long-term hyperfoam curve of a material on the lateral condition of the test, 0 .. peak strain.
+PlotSeries hyperfoam_series(const std::string& title, const std::vector<material::HyperfoamTerm>& terms, Lateral lateral,
+                            double peak) {
+  PlotSeries s{title, {}, {}};
+  for (int i = 0; i <= 60; ++i) s.x.push_back(peak * i / 60.0);
+  s.y = kpa(hyperfoam_uniaxial_stress(terms, terms.front().nu, lateral, s.x));
+  return s;
+}
+
+std::vector<double> magnitude(const DynamicModuli& d) {
+  std::vector<double> m;
+  for (std::size_t i = 0; i < d.frequency.size(); ++i) m.push_back(std::hypot(d.storage[i], d.loss[i]) * 1e3);
+  return m;
+}
+
+std::vector<double> phase(const DynamicModuli& d) {
+  std::vector<double> p;
+  for (std::size_t i = 0; i < d.frequency.size(); ++i) p.push_back(std::atan2(d.loss[i], d.storage[i]) * 180.0 / std::numbers::pi);
+  return p;
+}
+
+}  // namespace
+
+std::vector<Plot> fit_plots(const FitResult& R, const Campaign& campaign) {
+  std::vector<Plot> plots;
+  const QuasiStaticTest& qs = *campaign.quasi_static_calibration();
+  const DynamicTest& dyn = *campaign.dynamic_calibration();
+  {  // Fig. 8
+    Plot p{"fig8_decomposition", "Decomposition of " + qs.name + " (paper Fig. 8)", "nominal strain [-]",
+           "nominal stress [kPa]", "", "strain", "stress_kPa", {}};
+    const Decomposition& d = R.decomposition;
+    p.series.push_back({"test sigma", d.strain, kpa(d.sigma), true});
+    p.series.push_back({"viscous sigma_v (hereditary fit)", d.strain, kpa(d.sigma_v)});
+    p.series.push_back({"elastic sigma_e = sigma - sigma_v", d.strain, kpa(d.sigma_e)});
+    p.series.push_back(hyperfoam_series("hyperfoam fit (paper method)", R.hyperfoam.terms, qs.lateral, R.segments.peak_strain));
+    if (R.refit)
+      p.series.push_back(hyperfoam_series("hyperfoam after refit (long term)", R.refit->material.terms, qs.lateral,
+                                          R.segments.peak_strain));
+    plots.push_back(p);
+  }
+  {  // Fig. 7
+    Plot p{"fig7_difference_stress", "Difference stress sigma(t1) - sigma(t2) of " + qs.name + " (paper Fig. 7)",
+           "loading time t1 [s]", "difference stress [kPa]", "", "t1_s", "delta_sigma_kPa", {}};
+    p.series.push_back({"test", R.pairs.t1, kpa(R.hereditary.measured), true});
+    p.series.push_back({"hereditary model (fit)", R.pairs.t1, kpa(R.hereditary.model)});
+    plots.push_back(p);
+  }
+  {  // Fig. 4
+    Plot p{"fig4_dynamic", "Dynamic modulus and phase of " + dyn.name + " (paper Fig. 4)", "frequency [Hz]",
+           "dynamic modulus |E*| [kPa]", "phase [deg]", "frequency_Hz", "value_kPa_or_deg", {}};
+    const DynamicModuli fit = prony_moduli(R.prony.E_inf, R.prony.E, R.prony.tau, dyn.moduli.frequency);
+    p.series.push_back({"|E*| test", dyn.moduli.frequency, magnitude(dyn.moduli), true});
+    p.series.push_back({"|E*| Prony fit", fit.frequency, magnitude(fit)});
+    p.series.push_back({"phase test", dyn.moduli.frequency, phase(dyn.moduli), true, true});
+    p.series.push_back({"phase Prony fit", fit.frequency, phase(fit), false, true});
+    plots.push_back(p);
+  }
+  {  // Table 2 on the paper's protocol
+    Plot p{"table2_protocol", "Hereditary viscous stress on the paper's protocol (120 mm/min to 75 %, 2 s hold)",
+           "time [s]", "viscous stress sigma_v [kPa]", "", "time_s", "sigma_v_kPa", {}};
+    p.series.push_back({"paper Table 2", R.table2_curve.history.time, kpa(R.table2_curve.sigma_v)});
+    p.series.push_back({"this fit", R.fitted_curve.history.time, kpa(R.fitted_curve.sigma_v)});
+    plots.push_back(p);
+  }
+  {  // model vs test, quasi-static
+    Plot p{"model_vs_test_quasi_static", "Solver model vs every quasi-static test", "nominal strain [-]",
+           "nominal stress [kPa]", "", "strain", "stress_kPa", {}};
+    for (const auto& c : R.comparisons) {
+      if (!c.quasi_static_paper) continue;
+      p.series.push_back({c.name + " test", c.quasi_static_paper->strain, kpa(c.quasi_static_paper->measured), true});
+      p.series.push_back({c.name + " paper", c.quasi_static_paper->strain, kpa(c.quasi_static_paper->model)});
+      if (c.quasi_static_refit)
+        p.series.push_back({c.name + " refit", c.quasi_static_refit->strain, kpa(c.quasi_static_refit->model)});
+    }
+    plots.push_back(p);
+  }
+  {  // model vs test, dynamic
+    Plot p{"model_vs_test_dynamic", "Solver model vs every dynamic test (complex tangent at the preload)",
+           "frequency [Hz]", "dynamic modulus |E*| [kPa]", "", "frequency_Hz", "modulus_kPa", {}};
+    for (const auto& c : R.comparisons) {
+      if (!c.dynamic_paper) continue;
+      p.series.push_back({c.name + " test", c.dynamic_paper->measured.frequency, magnitude(c.dynamic_paper->measured), true});
+      p.series.push_back({c.name + " paper", c.dynamic_paper->model.frequency, magnitude(c.dynamic_paper->model)});
+      if (c.dynamic_refit)
+        p.series.push_back({c.name + " refit", c.dynamic_refit->model.frequency, magnitude(c.dynamic_refit->model)});
+    }
+    plots.push_back(p);
+  }
+  return plots;
+}
+
+std::vector<PlotFiles> write_fit_outputs(const FitResult& R, const Campaign& campaign, const fs::path& dir,
+                                         const std::string& gnuplot, std::ostream& log) {
+  if (fs::exists(dir) && !(fs::is_directory(dir) && (fs::is_empty(dir) || fs::exists(dir / "report.json"))))
+    throw InputError(dir.string() + ": exists and is not an earlier fit output; choose another output folder");
+  const fs::path tmp = dir.string() + ".partial";
+  fs::remove_all(tmp);
+  fs::create_directories(tmp);
+  try {
+    const double density = campaign.specimen.density;
+    std::string calibration_tests;
+    for (const QuasiStaticTest* t : campaign.quasi_static_calibration_tests()) calibration_tests += t->name + ", ";
+    if (calibration_tests.empty()) calibration_tests = R.quasi_static_name + ", ";
+    const std::string provenance = "cushion fit of " + campaign.manifest.filename().string() + " (calibration tests " +
+                                   calibration_tests + R.dynamic_name + ")";
+    const ViscoHyperfoam& refit_material = R.refit ? R.refit->material : R.paper_material;
+    if (R.paper_problem.empty())
+      material::write_material_file(
+          to_spec(R.paper_material, "foam_paper", provenance + ": the paper's method, Prony normalisation " +
+                                                      to_string(R.run_normalisation), density),
+          tmp / "material_paper.json");
+    else
+      log << "fit: note: material_paper.json not written: " << R.paper_problem << "\n";
+    if (R.refit_problem.empty())
+      material::write_material_file(
+          to_spec(refit_material, "foam_refit",
+                  provenance + (R.refit ? ": consistency refit of the solver's model to both tests" : ": refit not run (paper's)"),
+                  density),
+          tmp / "material_refit.json");
+    else
+      log << "fit: note: material_refit.json not written: " << R.refit_problem << "\n";
+    const bool refit_default = R.default_choice == DefaultMaterial::refit;
+    material::write_material_file(
+        to_spec(R.default_material, "foam", provenance + ": default = " + (refit_default ? "refit" : "paper") + " (" +
+                                                R.default_reason + ")", density),
+        tmp / "material.json");
+    io::write_file_atomically(tmp / "abaqus_paper.inp", abaqus_cards(R.paper_material, "FOAM_PAPER", density, provenance + ", paper's method"));
+    io::write_file_atomically(tmp / "abaqus_refit.inp", abaqus_cards(refit_material, "FOAM_REFIT", density, provenance + ", refit"));
+
+    std::vector<PlotFiles> files;
+    for (const Plot& p : fit_plots(R, campaign)) files.push_back(write_plot(p, tmp));
+    draw_plots(files, tmp, gnuplot);
+    for (const auto& f : files)
+      if (!f.drawn) log << "fit: note: " << f.message << "\n";
+    io::write_file_atomically(tmp / "report.json", report_json(R, campaign).dump(1) + "\n");
+    io::write_file_atomically(tmp / "report.md", report_markdown(R, campaign, files));
+    fs::remove_all(dir);
+    fs::rename(tmp, dir);
+    for (auto& f : files) {
+      f.csv = dir / f.csv.filename();
+      f.script = dir / f.script.filename();
+      f.png = dir / f.png.filename();
+    }
+    return files;
+  } catch (...) {
+    fs::remove_all(tmp);
+    throw;
+  }
+}
+
+}  // namespace cushion::calibration

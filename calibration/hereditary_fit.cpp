@@ -1,0 +1,282 @@
+#include "calibration/hereditary_fit.hpp"
+
+#include "calibration/ceres_options.hpp"
+
+#include <ceres/ceres.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <stdexcept>
+
+namespace cushion::calibration {
+namespace {
+
+/// D_i(q) = J_i(t1_q) - J_i(t2_q) and its beta-derivative for one mode.
+struct ModeDifference {
+  std::vector<cplx> D, dD;
+};
+
+ModeDifference mode_difference(const StressStrainRecord& r, const StrainPairs& p, cplx beta) {
+  std::vector<double> q = p.t1;
+  q.insert(q.end(), p.t2.begin(), p.t2.end());
+  const auto K = hereditary_kernel(r.time, r.strain, beta, q);
+  const std::size_t n = p.t1.size();
+  ModeDifference m;
+  m.D.resize(n);
+  m.dD.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    m.D[i] = K.J[i] - K.J[n + i];
+    m.dD[i] = K.dJ_dbeta[i] - K.dJ_dbeta[n + i];
+  }
+  return m;
+}
+
+/// Residuals model - measured; parameters [Re a, Im a, Re b, Im b] per mode (paper Table 2 order).
+/// Model: delta_sigma = -Re sum alpha_i D_i, so d/dRe a = -Re D, d/dIm a = Im D,
+/// d/dRe b = -Re(alpha D'), d/dIm b = Im(alpha D') (J holomorphic in beta).
+class DifferenceStressCost final : public ceres::CostFunction {
+ public:
+  DifferenceStressCost(const StressStrainRecord& r, const StrainPairs& p, const std::vector<double>& measured,
+                       int modes)
+      : r_(r), p_(p), measured_(measured), modes_(modes) {
+    set_num_residuals(int(measured.size()));
+    mutable_parameter_block_sizes()->push_back(4 * modes);
+  }
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const double* x = parameters[0];
+    const std::size_t n = measured_.size();
+    for (std::size_t q = 0; q < n; ++q) residuals[q] = -measured_[q];
+    for (int i = 0; i < modes_; ++i) {
+      const cplx alpha(x[4 * i], x[4 * i + 1]), beta(x[4 * i + 2], x[4 * i + 3]);
+      const auto m = mode_difference(r_, p_, beta);
+      for (std::size_t q = 0; q < n; ++q) {
+        residuals[q] -= (alpha * m.D[q]).real();
+        if (!std::isfinite(residuals[q])) return false;
+        if (jacobians && jacobians[0]) {
+          double* row = jacobians[0] + q * 4 * modes_ + 4 * i;
+          const cplx aD = alpha * m.dD[q];
+          row[0] = -m.D[q].real();
+          row[1] = m.D[q].imag();
+          row[2] = -aD.real();
+          row[3] = aD.imag();
+        }
+      }
+    }
+    return true;
+  }
+
+ private:
+  const StressStrainRecord& r_;
+  const StrainPairs& p_;
+  const std::vector<double>& measured_;
+  int modes_;
+};
+
+/// Variable projection (Golub-Pereyra with Kaufman's Jacobian): parameters are only the decay rates
+/// [Re b, Im b] per mode; the residues are eliminated by linear least squares, residual
+/// r(beta) = -(I - P) y with P the projection onto the columns Phi(beta) (-Re D_i, Im D_i), and
+/// Jacobian J_p = (I - P) (dPhi/dp) alpha(beta).
+class ProjectedCost final : public ceres::CostFunction {
+ public:
+  ProjectedCost(const StressStrainRecord& r, const StrainPairs& p, const std::vector<double>& measured, int modes)
+      : r_(r), p_(p), y_(Eigen::Map<const Eigen::VectorXd>(measured.data(), Eigen::Index(measured.size()))),
+        modes_(modes) {
+    set_num_residuals(int(measured.size()));
+    mutable_parameter_block_sizes()->push_back(2 * modes);
+  }
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const double* x = parameters[0];
+    const Eigen::Index n = y_.size();
+    Eigen::MatrixXd Phi(n, 2 * modes_), dPhi_r(n, 2 * modes_), dPhi_i(n, 2 * modes_);
+    for (int i = 0; i < modes_; ++i) {
+      const auto m = mode_difference(r_, p_, cplx(x[2 * i], x[2 * i + 1]));
+      for (Eigen::Index q = 0; q < n; ++q) {
+        Phi(q, 2 * i) = -m.D[q].real();
+        Phi(q, 2 * i + 1) = m.D[q].imag();
+        dPhi_r(q, 2 * i) = -m.dD[q].real();  // d/dRe beta
+        dPhi_r(q, 2 * i + 1) = m.dD[q].imag();
+        dPhi_i(q, 2 * i) = m.dD[q].imag();   // d/dIm beta: D' -> i D'
+        dPhi_i(q, 2 * i + 1) = m.dD[q].real();
+      }
+    }
+    if (!Phi.allFinite()) return false;
+    Eigen::VectorXd scale = Phi.colwise().norm().transpose();
+    for (Eigen::Index j = 0; j < scale.size(); ++j) scale(j) = scale(j) > 0.0 ? scale(j) : 1.0;
+    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Phi * scale.cwiseInverse().asDiagonal());
+    const Eigen::VectorXd alpha = qr.solve(y_).cwiseQuotient(scale);
+    const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(n, qr.rank());
+    auto project_out = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd { return v - Q * (Q.transpose() * v); };
+    Eigen::Map<Eigen::VectorXd>(residuals, n) = -project_out(y_);
+    if (jacobians && jacobians[0]) {
+      Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> J(jacobians[0], n, 2 * modes_);
+      for (int i = 0; i < modes_; ++i) {
+        const Eigen::VectorXd vr = dPhi_r.middleCols(2 * i, 2) * alpha.segment(2 * i, 2);
+        const Eigen::VectorXd vi = dPhi_i.middleCols(2 * i, 2) * alpha.segment(2 * i, 2);
+        J.col(2 * i) = project_out(vr);
+        J.col(2 * i + 1) = project_out(vi);
+      }
+    }
+    return true;
+  }
+
+ private:
+  const StressStrainRecord& r_;
+  const StrainPairs& p_;
+  Eigen::VectorXd y_;
+  int modes_;
+};
+
+ceres::Solver::Options solver_options(const HereditaryFitOptions& o) {
+  return dense_fit_options({o.function_tolerance, o.gradient_tolerance, o.parameter_tolerance, o.max_iterations});
+}
+
+}  // namespace
+
+std::vector<HereditaryMode> best_residues(const StressStrainRecord& r, const StrainPairs& p,
+                                          const std::vector<double>& measured, const std::vector<cplx>& betas) {
+  const int M = int(betas.size());
+  const std::size_t n = measured.size();
+  Eigen::MatrixXd A(n, 2 * M);
+  Eigen::VectorXd b = Eigen::Map<const Eigen::VectorXd>(measured.data(), Eigen::Index(n));
+  for (int i = 0; i < M; ++i) {
+    const auto m = mode_difference(r, p, betas[i]);
+    for (std::size_t q = 0; q < n; ++q) {
+      A(q, 2 * i) = -m.D[q].real();
+      A(q, 2 * i + 1) = m.D[q].imag();
+    }
+  }
+  // Column scaling for conditioning; rank-revealing QR gives the minimum-norm-like basic solution.
+  Eigen::VectorXd scale = A.colwise().norm().transpose();
+  for (Eigen::Index j = 0; j < scale.size(); ++j) scale(j) = scale(j) > 0.0 ? scale(j) : 1.0;
+  const Eigen::MatrixXd As = A * scale.cwiseInverse().asDiagonal();
+  const Eigen::VectorXd y = As.colPivHouseholderQr().solve(b).cwiseQuotient(scale);
+  std::vector<HereditaryMode> modes(M);
+  for (int i = 0; i < M; ++i) modes[i] = {cplx(y(2 * i), y(2 * i + 1)), betas[i]};
+  return modes;
+}
+
+HereditaryFit fit_hereditary(const StressStrainRecord& r, const Segments& s, const StrainPairs& p,
+                             const HereditaryFitOptions& o) {
+  const int M = o.modes;
+  if (M < 1) throw std::invalid_argument("fit_hereditary: need at least one mode");
+  if (p.t1.size() < std::size_t(4 * M))
+    throw std::invalid_argument(r.source + ": only " + std::to_string(p.t1.size()) +
+                                " loading/unloading pairs: too few to fit " + std::to_string(4 * M) + " parameters");
+  const std::vector<double> measured = measured_difference_stress(r, p);
+  // The kernels run over the slope changes of the strain history only (collinear samples add nothing), up
+  // to the last paired time: far fewer pieces than samples (a few for a constant-rate test).
+  StressStrainRecord knots;
+  {
+    const double last = *std::max_element(p.t2.begin(), p.t2.end());
+    std::size_t end = 1;
+    while (end < r.time.size() && r.time[end - 1] < last) ++end;
+    const std::vector<double> time(r.time.begin(), r.time.begin() + end), strain(r.strain.begin(), r.strain.begin() + end);
+    for (std::size_t k : piecewise_linear_knots(time, strain, 1e-6 * std::max(s.peak_strain, 1e-3))) {
+      knots.time.push_back(time[k]);
+      knots.strain.push_back(strain[k]);
+    }
+  }
+  const double T = r.time[s.unload_end] - r.time[s.load_begin];
+  const double peak = std::max(s.peak_stress, std::numeric_limits<double>::min());
+  const double beta_max = o.beta_max_factor / T, alpha_max = o.alpha_max_factor;
+  // Work in units of the peak stress so that the cost and the tolerances are O(1); alpha scales back.
+  std::vector<double> y(measured.size());
+  for (std::size_t q = 0; q < y.size(); ++q) y[q] = measured[q] / peak;
+
+  // Deterministic starts: all M-subsets of the decay-rate grid, plus Table 2.
+  std::vector<double> grid = o.start_decay_rates;
+  if (grid.empty()) grid = {0.01 / T, 0.1 / T, 1.0 / T, 10.0 / T};
+  std::vector<std::vector<cplx>> starts;
+  std::vector<int> pick(M);
+  std::function<void(int, int)> choose = [&](int depth, int from) {
+    if (depth == M) {
+      std::vector<cplx> b;
+      for (int k : pick) b.emplace_back(grid[k], o.start_imag_ratio * grid[k]);
+      starts.push_back(b);
+      return;
+    }
+    for (int k = from; k < int(grid.size()); ++k) {
+      pick[depth] = k;
+      choose(depth + 1, k + 1);
+    }
+  };
+  choose(0, 0);
+  if (o.paper_start && M == 2) {
+    std::vector<cplx> b;
+    for (const auto& m : paper_table2_modes()) b.push_back(m.beta);
+    starts.push_back(b);
+  }
+
+  // Stage 1 for every start: variable projection over the decay rates only (bounded).
+  struct Projected {
+    std::vector<cplx> betas;
+    double cost;
+  };
+  std::vector<Projected> projected;
+  for (const auto& betas : starts) {
+    std::vector<double> b(2 * M);
+    for (int i = 0; i < M; ++i) {
+      b[2 * i] = std::clamp(betas[i].real(), 0.0, beta_max);
+      b[2 * i + 1] = std::clamp(betas[i].imag(), 0.0, beta_max);
+    }
+    ceres::Problem problem;
+    problem.AddResidualBlock(new ProjectedCost(knots, p, y, M), nullptr, b.data());
+    for (int j = 0; j < 2 * M; ++j) {
+      problem.SetParameterLowerBound(b.data(), j, 0.0);
+      problem.SetParameterUpperBound(b.data(), j, beta_max);
+    }
+    ceres::Solver::Options so = solver_options(o);
+    so.max_num_iterations = o.max_projected_iterations;
+    ceres::Solver::Summary summary;
+    ceres::Solve(so, &problem, &summary);
+    std::vector<cplx> found;
+    for (int i = 0; i < M; ++i) found.emplace_back(b[2 * i], b[2 * i + 1]);
+    projected.push_back({found, summary.IsSolutionUsable() ? summary.final_cost : std::numeric_limits<double>::infinity()});
+  }
+  std::stable_sort(projected.begin(), projected.end(), [](const Projected& a, const Projected& b) { return a.cost < b.cost; });
+
+  // Stage 2 for the best of them: all 4M parameters from the projected solution (residues by linear least squares).
+  HereditaryFit best;
+  best.starts = int(starts.size());
+  double best_cost = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < projected.size() && k < std::size_t(std::max(1, o.refined_starts)); ++k) {
+    std::vector<HereditaryMode> init = best_residues(knots, p, y, projected[k].betas);
+    std::vector<double> x(4 * M);
+    for (int i = 0; i < M; ++i) {
+      x[4 * i] = std::clamp(init[i].alpha.real(), -alpha_max, alpha_max);
+      x[4 * i + 1] = std::clamp(init[i].alpha.imag(), -alpha_max, alpha_max);
+      x[4 * i + 2] = init[i].beta.real();
+      x[4 * i + 3] = init[i].beta.imag();
+    }
+    ceres::Problem problem;
+    problem.AddResidualBlock(new DifferenceStressCost(knots, p, y, M), nullptr, x.data());
+    for (int i = 0; i < M; ++i) {
+      for (int j = 0; j < 2; ++j) {
+        problem.SetParameterLowerBound(x.data(), 4 * i + j, -alpha_max);
+        problem.SetParameterUpperBound(x.data(), 4 * i + j, alpha_max);
+        problem.SetParameterLowerBound(x.data(), 4 * i + 2 + j, 0.0);
+        problem.SetParameterUpperBound(x.data(), 4 * i + 2 + j, beta_max);
+      }
+    }
+    ceres::Solver::Summary summary;
+    ceres::Solve(solver_options(o), &problem, &summary);
+    if (summary.IsSolutionUsable() && summary.final_cost < best_cost) {
+      best_cost = summary.final_cost;
+      best.modes.resize(M);
+      for (int i = 0; i < M; ++i) best.modes[i] = {cplx(x[4 * i], x[4 * i + 1]) * peak, cplx(x[4 * i + 2], x[4 * i + 3])};
+      best.report = summary.BriefReport();
+    }
+  }
+  if (best.modes.empty()) throw std::runtime_error(r.source + ": hereditary fit failed from every start");
+  best.modes = canonical(best.modes);
+  best.measured = measured;
+  best.model = model_difference_stress(r, p, best.modes);
+  best.rmse = rmse(best.model, measured);
+  best.rmse_relative = best.rmse / peak;
+  return best;
+}
+
+}  // namespace cushion::calibration
