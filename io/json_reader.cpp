@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <regex>
+#include <cctype>
 #include <sstream>
 
 #include "io/input_error.hpp"
@@ -28,14 +28,31 @@ std::pair<std::size_t, std::size_t> line_column(const std::string& text, std::si
   return {line, column};
 }
 
-/// The last `"key":` before byte `offset`, or "".
+/// The last `"key":` before byte `offset`, or "". A backward scan (no regex: std::regex recurses per
+/// character and overflows the stack on long strings): the last ':' outside strings, then the string
+/// literal before it.
 std::string last_key_before(const std::string& text, std::size_t offset) {
-  static const std::regex key_pattern(R"re("([^"\\]*)"\s*:)re");
-  const std::string head = text.substr(0, std::min(offset, text.size()));
-  std::string key;
-  for (auto it = std::sregex_iterator(head.begin(), head.end(), key_pattern); it != std::sregex_iterator(); ++it)
-    key = (*it)[1].str();
-  return key;
+  const std::size_t end = std::min(offset, text.size());
+  std::size_t colon = std::string::npos;
+  bool in_string = false;
+  for (std::size_t i = 0; i < end; ++i) {  // forward pass: find colons outside strings
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\') ++i;
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == ':') {
+      colon = i;
+    }
+  }
+  if (colon == std::string::npos) return "";
+  std::size_t close = colon;
+  while (close > 0 && std::isspace(static_cast<unsigned char>(text[close - 1]))) --close;
+  if (close < 2 || text[close - 1] != '"') return "";
+  const std::size_t open = text.rfind('"', close - 2);  // the key's opening quote
+  if (open == std::string::npos) return "";
+  return text.substr(open + 1, close - 2 - open);
 }
 
 std::string type_name(const nlohmann::json& v) {

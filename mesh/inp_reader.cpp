@@ -63,9 +63,10 @@ void load(const std::string& text, const std::string& name, std::vector<Line>& l
     const std::string t = trim(raw);
     if (t.empty() || t.rfind("**", 0) == 0) continue;
     const Line line{name, number, t};
-    if (t[0] == '*' && upper(trim(fields(t.substr(1)).front())) == "INCLUDE") {
+    const std::vector<std::string> keyword_fields = t[0] == '*' ? fields(t.substr(1)) : std::vector<std::string>{};
+    if (!keyword_fields.empty() && upper(keyword_fields.front()) == "INCLUDE") {
       std::string input;
-      for (const std::string& option : fields(t.substr(1))) {
+      for (const std::string& option : keyword_fields) {
         const auto eq = option.find('=');
         if (eq != std::string::npos && upper(trim(option.substr(0, eq))) == "INPUT")
           input = trim(option.substr(eq + 1));
@@ -263,13 +264,15 @@ class Reader {
       if (generate) {
         if (f.size() < 2 || f.size() > 3)
           fail(line, block.name, "GENERATE expects 'first, last[, increment]'");
-        const int first = integer(line, block.name, f[0]), last = integer(line, block.name, f[1]);
-        const int step = f.size() == 3 ? integer(line, block.name, f[2]) : 1;
+        // 64-bit range arithmetic: labels may span the whole int range (INT_MIN + 1 .. INT_MAX).
+        const long long first = integer(line, block.name, f[0]), last = integer(line, block.name, f[1]);
+        const long long step = f.size() == 3 ? integer(line, block.name, f[2]) : 1;
         if (step <= 0 || last < first || (last - first) % step != 0)
           fail(line, block.name, "bad GENERATE range " + std::to_string(first) + ", " +
                                      std::to_string(last) + ", " + std::to_string(step) +
                                      " (need first <= last, increment > 0 dividing last - first)");
-        for (int label = first; label <= last; label += step) members.push_back(to_index(line, label));
+        for (long long label = first; label <= last; label += step)
+          members.push_back(to_index(line, static_cast<int>(label)));
         continue;
       }
       for (const std::string& item : f) {

@@ -12,6 +12,12 @@
 namespace cushion::mesh {
 namespace {
 
+/// Largest accepted coordinate magnitude [mm] (1000 km): beyond it a model is a unit mistake, and the
+/// merge tolerance (relative to the extent) would overflow.
+constexpr double max_coordinate_mm = 1e9;
+
+bool plausible(const Vec3& x) { return x.allFinite() && x.cwiseAbs().maxCoeff() <= max_coordinate_mm; }
+
 // Merges coincident corners: positions snapped to a grid of spacing `tol` (neighbour cells checked).
 TriangleSurface merge(const std::vector<Vec3>& corners) {
   TriangleSurface surface;
@@ -59,8 +65,9 @@ std::vector<Vec3> read_ascii(std::istream& in, const std::string& path) {
     for (auto& ch : word) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
     if (word == "vertex") {
       Vec3 x;
-      if (!(words >> x[0] >> x[1] >> x[2]) || !x.allFinite())
-        throw InputError(path + ":" + std::to_string(line_no) + ": bad vertex coordinates");
+      if (!(words >> x[0] >> x[1] >> x[2]) || !plausible(x))
+        throw InputError(path + ":" + std::to_string(line_no) +
+                         ": bad vertex coordinates (need 3 finite numbers of magnitude <= 1e9 mm)");
       corners.push_back(x);
       ++in_facet;
     } else if (word == "endfacet") {
@@ -92,8 +99,9 @@ TriangleSurface read_stl(const std::string& path) {
         float xyz[3];
         std::memcpy(xyz, bytes.data() + 84 + 50ull * t + 12 + 12 * v, 12);
         corners.emplace_back(xyz[0], xyz[1], xyz[2]);
-        if (!corners.back().allFinite())
-          throw InputError(path + ": triangle " + std::to_string(t + 1) + ": non-finite vertex");
+        if (!plausible(corners.back()))
+          throw InputError(path + ": triangle " + std::to_string(t + 1) +
+                           ": non-finite vertex or coordinate beyond 1e9 mm");
       }
     if (corners.empty()) throw InputError(path + ": no facets");
   } else if (bytes.compare(0, 5, "solid") == 0) {

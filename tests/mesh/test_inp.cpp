@@ -226,3 +226,25 @@ TEST(InpReader, MalformedDecksNameTheLine) {
             "model.inp: element 11 (C3D8): non-positive J");
   EXPECT_EQ(error_of("1, 2, 3\n"), "model.inp:1: data line before the first keyword");
 }
+
+// Fuzzing findings (issue 16): a keyword line that is only '*' crashed (front() of no fields); GENERATE
+// over the whole int range overflowed and rejected a valid deck.
+TEST(InpReader, FuzzFindingsAreInputErrors) {
+  EXPECT_EQ(error_of("*\n"), "model.inp:1: empty keyword");
+  EXPECT_EQ(error_of("*,\n"), "model.inp:1: empty keyword");
+  EXPECT_EQ(error_of(replace(kDeck, "*HEADING\n", "*,\n")), "model.inp:1: empty keyword");
+}
+
+TEST(InpReader, GenerateAtTheEndsOfTheIntRange) {
+  const std::string deck = R"(*NODE
+-2147483647, 0, 0, 0
+2147483647, 1, 0, 0
+*NSET, NSET=ENDS, GENERATE
+-2147483647, 2147483647, 2147483647
+*NSET, NSET=LAST, GENERATE
+2147483647, 2147483647
+)";
+  const cm::Mesh mesh = cm::parse_inp(deck, "ends.inp");
+  EXPECT_EQ(mesh.node_sets.at("ENDS").size(), 2u);
+  EXPECT_EQ(mesh.node_sets.at("LAST").size(), 1u);
+}

@@ -7,6 +7,7 @@
 
 #include "io/input_error.hpp"
 #include "io/csv.hpp"
+#include "io/json_reader.hpp"
 
 namespace fs = std::filesystem;
 
@@ -109,4 +110,18 @@ TEST(Csv, RequireColumnsSuggestsTheClosestName) {
   EXPECT_EQ(cushion::require_columns(cushion::read_csv(good), accepted), 1u);
   const fs::path both = write_text(scratch_dir() / "both.csv", "time_s,strain,stress_kPa,displacement_mm,force_N\n0,1,2,3,4\n");
   EXPECT_THROW(cushion::require_columns(cushion::read_csv(both), accepted), cushion::InputError);  // ambiguous
+}
+
+// Fuzzing finding (issue 16): a syntax error after a long string overflowed the stack in the error
+// location code (recursive std::regex); it must be an InputError naming the file, line and last key.
+TEST(JsonReader, SyntaxErrorAfterALongStringIsAnInputError) {
+  const std::string text = "{\"description\": \"" + std::string(200000, 'x') + "\", \"mu_kPa\": 1,, }";
+  try {
+    cushion::io::parse_json(text, "long.json");
+    FAIL() << "accepted malformed JSON";
+  } catch (const cushion::InputError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind("long.json:1:", 0), 0u) << message;
+    EXPECT_NE(message.find("mu_kPa"), std::string::npos) << message;
+  }
 }
