@@ -1,5 +1,5 @@
 #pragma once
-/// Ogden-Roxburgh stress softening (Mullins effect; ABAQUS "foam energy dissipation" form, physics.md
+/// Ogden-Roxburgh stress softening (Mullins effect; ABAQUS "foam energy dissipation" form, docs/physics.md
 /// 5.2, where the damage variable scales the whole stress):
 ///   S = eta S_inner,  eta = 1 - (1/r) erf((W_max - W) / (m + beta W_max)),
 /// W: strain energy of the ELASTIC BASE at F (the long-term base when the inner model is viscoelastic),

@@ -1,5 +1,5 @@
 #pragma once
-/// Pneumatic (air-flow, Darcy) damping of open-cell foam as a LUMPED extra pressure (physics.md 5.1).
+/// Pneumatic (air-flow, Darcy) damping of open-cell foam as a LUMPED extra pressure (docs/physics.md 5.1).
 ///
 /// Air expelled from a layer of half-width R compressed at volumetric rate -dJ/dt flows laterally
 /// through the cells by Darcy's law; the mean extra stress of the layer is eta eps_dot R^2 / (8 K)

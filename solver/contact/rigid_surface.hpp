@@ -48,8 +48,8 @@ std::shared_ptr<const RigidSurface> make_cylinder(const Vec3& point, const Vec3&
 std::shared_ptr<const RigidSurface> make_flat_punch(double cx, double cy, double bottom, double radius,
                                                     double r_edge);
 
-/// Parametric SIT-BAR surrogate (physics.md 1.1; every number assumed unless noted).
-/// Default c = 120 mm (physics.md proposes 60): with c = 60 the lobe flanks turn vertical exactly at
+/// Parametric SIT-BAR surrogate (docs/physics.md 1.1; every number assumed unless noted).
+/// Default c = 120 mm (docs/physics.md proposes 60): with c = 60 the lobe flanks turn vertical exactly at
 /// 60 mm travel and the plate rim (at the equator) lands on the block, so the paper's 60 mm cannot
 /// be pressed smoothly. With c = 120 the plate stays 60 mm above the foam at full travel and the
 /// flank slope at 60 mm above the lowest point is bounded (dz/dx = (c/a) r / sqrt(1 - r^2) = 2.1

@@ -2,7 +2,7 @@
 /// Small-amplitude linearisation of a solid model about a base state (the committed end of a static
 /// step), for steady-state dynamics, modal analysis and the Rayleigh damping of the dynamic step.
 ///
-/// Complex tangent stiffness, element by element (physics.md 3.2):
+/// Complex tangent stiffness, element by element (docs/physics.md 3.2):
 ///   K*(w) = int B^T C*(w) B dV0 + int (g_a . S_geo g_b) I dV0   (+ the F-bar terms of the kernel),
 /// C*(w) = Material::complex_tangent(F_base, w) at every quadrature point (the Prony part scales the
 /// long-term tangent about the base), S_geo the REAL base-state PK2 stress, unscaled by the Prony

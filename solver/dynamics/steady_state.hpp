@@ -1,5 +1,5 @@
 #pragma once
-/// Direct steady-state dynamics (physics.md 4): harmonic response u(t) = Re(u^ e^{+i w t}) of the
+/// Direct steady-state dynamics (docs/physics.md 4): harmonic response u(t) = Re(u^ e^{+i w t}) of the
 /// linearised model about its base state, with prescribed harmonic displacements at some DOFs.
 ///
 ///   D(w) = K*(w) + K_x + i s K_R(0) + i w (alpha M + beta K_R(0)) - w^2 M,

@@ -1,5 +1,5 @@
 // Requirement: the pneumatic (Darcy air-flow) effect adds the documented lumped extra pressure
-// eta R^2/(8 K(J)) (-dJ/dt)/J, reduces to the Darcy layer formula of physics.md 5.1 at small strain,
+// eta R^2/(8 K(J)) (-dJ/dt)/J, reduces to the Darcy layer formula of docs/physics.md 5.1 at small strain,
 // scales with R^2, has an exact increment tangent, and its complex tangent matches a time-domain sine.
 #include <gtest/gtest.h>
 
@@ -62,7 +62,7 @@ TEST(EffectPneumatic, ConstantVolumetricRateGivesTheDocumentedPressure) {
 }
 
 TEST(EffectPneumatic, SmallStrainLimitIsTheDarcyLayerFormula) {
-  // physics.md 5.1: mean extra stress of a layer of half-width R at rate eps_dot is eta eps_dot R^2/(8K).
+  // docs/physics.md 5.1: mean extra stress of a layer of half-width R at rate eps_dot is eta eps_dot R^2/(8K).
   // First increment from J = 1 with strain 1e-6: agreement to O(strain), tolerance 1e-5 relative.
   const PneumaticParameters p = strong_air();
   const PneumaticEffect m(test::effect_test_foam(), p);

@@ -1,4 +1,4 @@
-// Requirement: Hyperfoam returns the ABAQUS hyperfoam stresses of physics.md section 2.3 in every
+// Requirement: Hyperfoam returns the ABAQUS hyperfoam stresses of docs/physics.md section 2.3 in every
 // homogeneous mode, the exact tangent dS/dE (also at equal and nearly equal stretches), S = 2 dW/dC,
 // objective stresses, the documented initial moduli, and Status::failed for J <= 0 or overflow.
 #include <gtest/gtest.h>
@@ -14,7 +14,7 @@ namespace {
 using test::fd_dS_dE;
 using test::rel_diff;
 
-// Closed forms of physics.md 2.3 written independently of the implementation (std::pow only).
+// Closed forms of docs/physics.md 2.3 written independently of the implementation (std::pow only).
 struct ClosedForm {
   std::vector<HyperfoamTerm> t;
   double nu;  // the common nu of all terms

@@ -16,7 +16,7 @@ using cm::Segment;
 
 namespace {
 
-// Three terms, one common nu (closed forms of physics.md 2.3 need a common nu). MPa.
+// Three terms, one common nu (closed forms of docs/physics.md 2.3 need a common nu). MPa.
 std::vector<cm::HyperfoamTerm> terms(double nu) { return {{0.010, 10.0, nu}, {0.0001, -2.0, nu}, {0.0005, 3.0, nu}}; }
 
 Segment ramp(double target, double duration, int steps = 0) {

@@ -16,7 +16,7 @@ namespace {
 const StabilityMode kModes[4] = {StabilityMode::uniaxial, StabilityMode::equibiaxial, StabilityMode::planar,
                                  StabilityMode::volumetric};
 
-// ---- independent closed forms for hyperfoam with one common nu (physics.md 2.2-2.4) ----
+// ---- independent closed forms for hyperfoam with one common nu (docs/physics.md 2.2-2.4) ----
 Vec3 tau_closed(const std::vector<HyperfoamTerm>& t, const Vec3& l) {
   const double J = l.prod();
   Vec3 tau = Vec3::Zero();
@@ -88,7 +88,7 @@ TEST(Stability, LogTangentPushForwardMatchesClosedForms) {
 }
 
 TEST(Stability, StableSetsPass) {
-  // All mu_i > 0 and nu >= 0 is sufficient for stability (physics.md 2.4); neo-Hookean is stable too.
+  // All mu_i > 0 and nu >= 0 is sufficient for stability (docs/physics.md 2.4); neo-Hookean is stable too.
   for (const auto& t : {std::vector<HyperfoamTerm>{{0.02, 9.0, 0.1}, {0.004, -3.0, 0.1}},
                         std::vector<HyperfoamTerm>{{0.01, 12.0, 0.0}, {0.002, -5.0, 0.2}, {0.001, 2.0, 0.3}}}) {
     const StabilityReport r = check_stability(Hyperfoam(t));
@@ -125,7 +125,7 @@ TEST(Stability, MixedSignSetFailsInCompressionAtTheAnalyticStrain) {
 }
 
 TEST(Stability, ModeDependentInstabilityMatchesClosedFormScan) {
-  // Lateral stretches solved numerically vs the analytic ones of physics.md 2.3: the first unstable
+  // Lateral stretches solved numerically vs the analytic ones of docs/physics.md 2.3: the first unstable
   // grid strain agrees within one grid step per mode and side. This set is stable in uniaxial and
   // planar compression but unstable in equibiaxial and volumetric compression.
   const double nu = 0.2;

@@ -1,6 +1,6 @@
 // Requirement: Viscoelastic reproduces the linear Prony relaxation modulus of the paper's Table 3 at
 // small strain (step, ramp, sine with second-order convergence), its increment tangent is exact,
-// the MODULI conventions and the frequency-domain factor match the closed forms of physics.md 3.
+// the MODULI conventions and the frequency-domain factor match the closed forms of docs/physics.md 3.
 #include <gtest/gtest.h>
 
 #include <cmath>
