@@ -139,33 +139,32 @@ const DynamicTest* Campaign::dynamic_calibration() const {
   return nullptr;
 }
 
-Campaign read_campaign(const std::filesystem::path& manifest) {
-  const std::string source = manifest.string();
-  const nlohmann::json document = io::parse_json(io::read_text_file(source), source);
-  const io::JsonNode root(document, source);
-  root.expect_object({"description", "specimen", "tests"});
-  Campaign c;
-  c.manifest = manifest;
-  if (auto d = root.find("description")) c.description = d->string();
+namespace {
 
-  const io::JsonNode sp = root.at("specimen");
+/// The specimen block: dimensions [mm] and density (kg/m^3 in the file, t/mm^3 here).
+Specimen read_specimen(const io::JsonNode& sp) {
   sp.expect_object({"length_mm", "width_mm", "thickness_mm", "density_kg_m3"});
-  c.specimen.length = sp.at("length_mm").number_where(positive, "> 0");
-  c.specimen.width = sp.at("width_mm").number_where(positive, "> 0");
-  c.specimen.thickness = sp.at("thickness_mm").number_where(positive, "> 0");
-  c.specimen.density = sp.at("density_kg_m3").number_where(positive, "> 0") * 1e-12;  // kg/m^3 -> t/mm^3
+  Specimen s;
+  s.length = sp.at("length_mm").number_where(positive, "> 0");
+  s.width = sp.at("width_mm").number_where(positive, "> 0");
+  s.thickness = sp.at("thickness_mm").number_where(positive, "> 0");
+  s.density = sp.at("density_kg_m3").number_where(positive, "> 0") * 1e-12;  // kg/m^3 -> t/mm^3
+  return s;
+}
 
-  const io::JsonNode tests = root.at("tests");
+/// A material test (quasi-static or dynamic) whose keys are checked and whose use is not yet resolved.
+struct PendingTest {
+  std::string kind;
+  std::optional<TestUse> use;  ///< explicit "use", if any
+  io::JsonNode node;
+};
+
+/// The material tests of the manifest, keys checked, with their explicit use (at most one dynamic
+/// calibration test); structure tests are read into the campaign at once.
+std::vector<PendingTest> scan_tests(const io::JsonNode& tests, const std::filesystem::path& folder, Campaign& c,
+                                    bool& qs_calibration_given, bool& dyn_calibration_given) {
   const std::size_t n = tests.expect_array(1, 1000);
-  const auto folder = manifest.parent_path();
-  // Explicit "use" first, then the default: first test of a kind without an explicit use calibrates
-  // if no test of that kind was declared "calibration".
-  struct Pending {
-    std::string kind;
-    std::optional<TestUse> use;
-    io::JsonNode node;
-  };
-  std::vector<Pending> pending;
+  std::vector<PendingTest> pending;
   std::optional<std::string> qs_cal, dyn_cal;  // key path of the explicit calibration test
   for (std::size_t i = 0; i < n; ++i) {
     const io::JsonNode t = tests[i];
@@ -190,11 +189,60 @@ Campaign read_campaign(const std::filesystem::path& manifest) {
     }
     pending.push_back({kind, use, t});
   }
-  bool qs_default_taken = qs_cal.has_value(), dyn_default_taken = dyn_cal.has_value();
+  qs_calibration_given = qs_cal.has_value();
+  dyn_calibration_given = dyn_cal.has_value();
+  return pending;
+}
+
+/// A quasi-static test: rate [mm/min in the file, mm/s here], lateral condition, record.
+QuasiStaticTest read_quasi_static_test(const io::JsonNode& t, std::string name, const std::filesystem::path& file,
+                                       TestUse use, const Specimen& specimen) {
+  QuasiStaticTest q;
+  q.name = std::move(name);
+  q.file = file;
+  q.use = use;
+  q.rate = t.at("rate_mm_min").number_where(positive, "> 0") / 60.0;
+  if (auto l = t.find("lateral")) q.lateral = l->choice({"free", "constrained"}) == "free" ? Lateral::free : Lateral::constrained;
+  q.record = read_quasi_static_csv(file, specimen);
+  return q;
+}
+
+/// A dynamic test: preload strain, acceleration amplitude [m/s^2 in the file, mm/s^2 here], moduli.
+DynamicTest read_dynamic_test(const io::JsonNode& t, std::string name, const std::filesystem::path& file, TestUse use,
+                              const Specimen& specimen) {
+  DynamicTest d;
+  d.name = std::move(name);
+  d.file = file;
+  d.use = use;
+  d.preload_strain = t.at("preload_strain").number_where(unit_interval, "in [0, 1)");
+  d.acceleration_amplitude = t.at("acceleration_amplitude_m_s2").number_where(positive, "> 0") * 1e3;
+  if (auto a = t.find("amplitude_is")) d.amplitude_peak_to_peak = a->choice({"peak_to_peak", "peak"}) == "peak_to_peak";
+  if (auto r = t.find("preload_rate_mm_min")) d.preload_rate_mm_min = r->number_where(positive, "> 0");
+  d.moduli = read_dynamic_csv(file, specimen);
+  return d;
+}
+
+}  // namespace
+
+Campaign read_campaign(const std::filesystem::path& manifest) {
+  const std::string source = manifest.string();
+  const nlohmann::json document = io::parse_json(io::read_text_file(source), source);
+  const io::JsonNode root(document, source);
+  root.expect_object({"description", "specimen", "tests"});
+  Campaign c;
+  c.manifest = manifest;
+  if (auto d = root.find("description")) c.description = d->string();
+  c.specimen = read_specimen(root.at("specimen"));
+
+  const auto folder = manifest.parent_path();
+  // Explicit "use" first, then the default: first test of a kind without an explicit use calibrates
+  // if no test of that kind was declared "calibration".
+  bool qs_default_taken = false, dyn_default_taken = false;
+  const std::vector<PendingTest> pending = scan_tests(root.at("tests"), folder, c, qs_default_taken, dyn_default_taken);
   for (const auto& p : pending) {
     const io::JsonNode& t = p.node;
     const std::filesystem::path file = folder / t.at("file").string();
-    const std::string name = t.find("name") ? t.at("name").string() : file.stem().string();
+    std::string name = t.find("name") ? t.at("name").string() : file.stem().string();
     bool& taken = p.kind == "quasi_static" ? qs_default_taken : dyn_default_taken;
     TestUse use = TestUse::validation;
     if (p.use) use = *p.use;
@@ -202,27 +250,10 @@ Campaign read_campaign(const std::filesystem::path& manifest) {
       use = TestUse::calibration;
       taken = true;
     }
-    if (p.kind == "quasi_static") {
-      QuasiStaticTest q;
-      q.name = name;
-      q.file = file;
-      q.use = use;
-      q.rate = t.at("rate_mm_min").number_where(positive, "> 0") / 60.0;
-      if (auto l = t.find("lateral")) q.lateral = l->choice({"free", "constrained"}) == "free" ? Lateral::free : Lateral::constrained;
-      q.record = read_quasi_static_csv(file, c.specimen);
-      c.quasi_static.push_back(std::move(q));
-    } else {
-      DynamicTest d;
-      d.name = name;
-      d.file = file;
-      d.use = use;
-      d.preload_strain = t.at("preload_strain").number_where(unit_interval, "in [0, 1)");
-      d.acceleration_amplitude = t.at("acceleration_amplitude_m_s2").number_where(positive, "> 0") * 1e3;
-      if (auto a = t.find("amplitude_is")) d.amplitude_peak_to_peak = a->choice({"peak_to_peak", "peak"}) == "peak_to_peak";
-      if (auto r = t.find("preload_rate_mm_min")) d.preload_rate_mm_min = r->number_where(positive, "> 0");
-      d.moduli = read_dynamic_csv(file, c.specimen);
-      c.dynamic.push_back(std::move(d));
-    }
+    if (p.kind == "quasi_static")
+      c.quasi_static.push_back(read_quasi_static_test(t, std::move(name), file, use, c.specimen));
+    else
+      c.dynamic.push_back(read_dynamic_test(t, std::move(name), file, use, c.specimen));
   }
   return c;
 }

@@ -30,6 +30,13 @@ std::string fmt(double v, int digits = 3) {
   return o.str();
 }
 
+/// chi2: sum of squared noise-normalised residuals of a comparison.
+double chi2_of(const CompareResult& r, int points) {
+  double s = 0.0;
+  for (double x : normalised_residuals(r, points)) s += x * x;
+  return s;
+}
+
 /// One fitted parameter: where it lives and how it is scaled.
 struct FreeParameter {
   std::size_t effect = 0;  ///< index in the candidate's effect list
@@ -136,9 +143,7 @@ class CandidateModel {
   double chi2_at(const double* u) const {
     const auto r = compare_at(u);
     if (!r) return std::numeric_limits<double>::infinity();
-    double s = 0.0;
-    for (double x : normalised_residuals(*r, options_.quasi_static_points)) s += x * x;
-    return s;
+    return chi2_of(*r, options_.quasi_static_points);
   }
   bool residuals_at(const double* u, double* out, std::size_t n) const {
     const auto r = compare_at(u);
@@ -189,6 +194,35 @@ void scan_start(const CandidateModel& m, std::vector<double>& u) {
   }
 }
 
+/// Bounded Levenberg-Marquardt (Ceres, forward-difference Jacobian) on the noise-normalised residuals,
+/// from u; u holds the solution on return.
+ceres::Solver::Summary minimise(const CandidateModel& model, std::vector<double>& u, std::size_t n_residuals,
+                                int max_iterations) {
+  ceres::Problem problem;
+  ceres::NumericDiffOptions nd;
+  nd.relative_step_size = 1e-5;
+  auto* cost = new ceres::DynamicNumericDiffCostFunction<Residual, ceres::FORWARD>(
+      new Residual{&model, n_residuals}, ceres::TAKE_OWNERSHIP, nd);
+  cost->AddParameterBlock(static_cast<int>(u.size()));
+  cost->SetNumResiduals(static_cast<int>(n_residuals));
+  problem.AddResidualBlock(cost, nullptr, u.data());
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    problem.SetParameterLowerBound(u.data(), static_cast<int>(i), model.free()[i].lower);
+    problem.SetParameterUpperBound(u.data(), static_cast<int>(i), model.free()[i].upper);
+  }
+  ceres::Solver::Options so;
+  so.linear_solver_type = ceres::DENSE_QR;
+  so.max_num_iterations = max_iterations;
+  so.function_tolerance = 1e-6;
+  so.parameter_tolerance = 1e-6;
+  so.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(so, &problem, &summary);
+  return summary;
+}
+
+/// Fits one candidate (its effects' fitted parameters, and the base-refit factors with refit_base) and
+/// scores it: chi2, BIC = chi2 + k ln N, dBIC against the baseline. A failure is reported in the result.
 CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector<material::EffectSpec>& start_effects,
                            const Campaign& campaign, const std::vector<TestNoise>& noise, std::size_t n_residuals,
                            double baseline_bic, const DiagnoseOptions& options, bool scan, bool refit_base = false) {
@@ -207,26 +241,7 @@ CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector
     if (scan) scan_start(model, u);
     if (!std::isfinite(model.chi2_at(u.data())))
       throw std::runtime_error("the model with this effect fails at every start value tried");
-    ceres::Problem problem;
-    ceres::NumericDiffOptions nd;
-    nd.relative_step_size = 1e-5;
-    auto* cost = new ceres::DynamicNumericDiffCostFunction<Residual, ceres::FORWARD>(
-        new Residual{&model, n_residuals}, ceres::TAKE_OWNERSHIP, nd);
-    cost->AddParameterBlock(static_cast<int>(u.size()));
-    cost->SetNumResiduals(static_cast<int>(n_residuals));
-    problem.AddResidualBlock(cost, nullptr, u.data());
-    for (std::size_t i = 0; i < u.size(); ++i) {
-      problem.SetParameterLowerBound(u.data(), static_cast<int>(i), model.free()[i].lower);
-      problem.SetParameterUpperBound(u.data(), static_cast<int>(i), model.free()[i].upper);
-    }
-    ceres::Solver::Options so;
-    so.linear_solver_type = ceres::DENSE_QR;
-    so.max_num_iterations = options.max_iterations;
-    so.function_tolerance = 1e-6;
-    so.parameter_tolerance = 1e-6;
-    so.logging_type = ceres::SILENT;
-    ceres::Solver::Summary summary;
-    ceres::Solve(so, &problem, &summary);
+    const ceres::Solver::Summary summary = minimise(model, u, n_residuals, options.max_iterations);
     fit.converged = summary.IsSolutionUsable();
     fit.message = summary.BriefReport();
     if (summary.termination_type == ceres::NO_CONVERGENCE)
@@ -235,8 +250,7 @@ CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector
     const auto r = model.compare_at(u.data());
     if (!r) throw std::runtime_error("the model run fails at the fitted parameters");
     fit.compare = *r;
-    fit.chi2 = 0.0;
-    for (double x : normalised_residuals(fit.compare, options.quasi_static_points)) fit.chi2 += x * x;
+    fit.chi2 = chi2_of(fit.compare, options.quasi_static_points);
     fit.bic = fit.chi2 + fit.parameters * std::log(static_cast<double>(n_residuals));
     fit.delta_bic = baseline_bic - fit.bic;
     fit.effects = model.effects_at(u.data());
@@ -266,12 +280,6 @@ std::vector<CandidateFit> run_all(const std::vector<std::function<CandidateFit()
   return out;
 }
 
-double chi2_of(const CompareResult& r, int points) {
-  double s = 0.0;
-  for (double x : normalised_residuals(r, points)) s += x * x;
-  return s;
-}
-
 }  // namespace
 
 std::string CandidateFit::name() const {
@@ -279,6 +287,78 @@ std::string CandidateFit::name() const {
   for (const auto& k : kinds) s += (s.empty() ? "" : " + ") + k;
   return s;
 }
+
+namespace {
+
+/// Rate dependence of the hysteresis (loop area) the model misses, slowest vs fastest quasi-static test.
+std::string hysteresis_rate_evidence(const std::vector<const TestCompare*>& qs) {
+  std::ostringstream o;
+  o << "hysteresis (loop area) measured vs model:";
+  for (const auto* t : qs)
+    o << " " << fmt(t->rate_mm_min) << " mm/min " << fmt(t->hysteresis_measured * 1e3) << " vs "
+      << fmt(t->hysteresis_model * 1e3) << " kPa;";
+  const RegionError* slow = qs.front()->region("hysteresis_area");
+  const RegionError* fast = qs.back()->region("hysteresis_area");
+  const double ms = -slow->bias, mf = -fast->bias;  // missing = measured - model
+  const bool sig_s = std::abs(ms) > 3.0 * slow->noise, sig_f = std::abs(mf) > 3.0 * fast->noise;
+  if (!sig_s && !sig_f)
+    o << " the model has the right hysteresis at every rate (within 3x noise)";
+  else if (sig_s && ms > 0 && std::abs(mf) < 2.0 * std::abs(ms) && mf > 0.5 * ms)
+    o << " the model misses " << fmt(ms * 1e0) << " kPa at " << fmt(qs.front()->rate_mm_min) << " mm/min and " << fmt(mf)
+      << " kPa at " << fmt(qs.back()->rate_mm_min)
+      << " mm/min: a missing dissipation that does NOT vanish at slow rates (rate-independent)";
+  else if (sig_f && mf > 0 && mf > 2.0 * std::max(ms, 0.0))
+    o << " the missing hysteresis grows with rate (" << fmt(ms) << " -> " << fmt(mf)
+      << " kPa): a missing RATE-DEPENDENT dissipation";
+  else
+    o << " hysteresis error " << fmt(-ms) << " kPa (slowest) and " << fmt(-mf) << " kPa (fastest), model - measured";
+  return o.str();
+}
+
+/// Loading vs unloading of one quasi-static test (first loading vs unloading/reloading below the previous
+/// maximum); empty when both are within 2x noise.
+std::string loading_unloading_evidence(const TestCompare& t) {
+  const RegionError *l = t.region("loading"), *u = t.region("unloading");
+  if (!(l->ratio() > 2.0 || u->ratio() > 2.0)) return {};
+  return t.name + ": first loading error " + fmt(l->rms) + " kPa (" + fmt(l->ratio(), 2) + "x noise, bias " +
+         fmt(l->bias) + "), unloading error " + fmt(u->rms) + " kPa (" + fmt(u->ratio(), 2) + "x noise, bias " +
+         fmt(u->bias) + ")" +
+         (u->ratio() > 2.0 * std::max(1.0, l->ratio()) ? ": the failure is on unloading, first loading fits" : "");
+}
+
+/// Phase and modulus error vs frequency of one dynamic test.
+std::string frequency_evidence(const TestCompare& t) {
+  const RegionError *pl = t.region("band_low_phase"), *ph = t.region("band_high_phase");
+  const RegionError *ml = t.region("band_low_modulus"), *mh = t.region("band_high_modulus");
+  std::ostringstream o;
+  o << t.name << ": phase error (model - measured) " << fmt(pl->bias) << " deg in the low band, " << fmt(ph->bias)
+    << " deg in the high band (noise " << fmt(t.noise.phase) << " deg)";
+  if (std::abs(ph->bias - pl->bias) > 3.0 * t.noise.phase && std::abs(ph->bias) > std::abs(pl->bias))
+    o << ": the phase error GROWS with frequency";
+  else if (std::abs(pl->bias) > 3.0 * t.noise.phase && std::abs(ph->bias - pl->bias) < 0.5 * std::abs(pl->bias))
+    o << ": a frequency-INDEPENDENT loss is missing or extra";
+  o << "; |E*| error " << fmt(ml->bias) << " -> " << fmt(mh->bias) << " kPa (noise " << fmt(t.noise.modulus * 1e3) << ")";
+  return o.str();
+}
+
+/// Preload dependence of the dynamic modulus across the dynamic tests.
+std::string preload_evidence(const std::vector<const TestCompare*>& dyn) {
+  std::ostringstream o;
+  o << "|E*| bias (model - measured) by preload:";
+  double lo = 1e300, hi = -1e300;
+  for (const auto* t : dyn) {
+    const RegionError* a = t->region("all_modulus");
+    const double rel = a->bias / (a->nrmse > 0 ? a->rms / a->nrmse : 1.0);
+    o << " " << fmt(100 * t->preload) << "% preload " << fmt(100 * rel, 2) << "%;";
+    lo = std::min(lo, a->bias / std::max(a->noise, 1e-300));
+    hi = std::max(hi, a->bias / std::max(a->noise, 1e-300));
+  }
+  if (hi - lo > 3.0) o << " the modulus error DEPENDS ON THE PRELOAD (" << fmt(hi - lo, 2) << " noise units apart)";
+  else o << " no preload dependence beyond noise";
+  return o.str();
+}
+
+}  // namespace
 
 std::vector<std::string> signature_evidence(const CompareResult& b) {
   std::vector<std::string> ev;
@@ -288,126 +368,80 @@ std::vector<std::string> signature_evidence(const CompareResult& b) {
     (t.kind == "quasi_static" ? qs : dyn).push_back(&t);
   }
   std::sort(qs.begin(), qs.end(), [](auto a, auto c) { return a->rate_mm_min < c->rate_mm_min; });
-  // Rate dependence of the hysteresis the model misses.
-  if (qs.size() >= 2) {
-    std::ostringstream o;
-    o << "hysteresis (loop area) measured vs model:";
-    for (const auto* t : qs)
-      o << " " << fmt(t->rate_mm_min) << " mm/min " << fmt(t->hysteresis_measured * 1e3) << " vs "
-        << fmt(t->hysteresis_model * 1e3) << " kPa;";
-    const RegionError* slow = qs.front()->region("hysteresis_area");
-    const RegionError* fast = qs.back()->region("hysteresis_area");
-    const double ms = -slow->bias, mf = -fast->bias;  // missing = measured - model
-    const bool sig_s = std::abs(ms) > 3.0 * slow->noise, sig_f = std::abs(mf) > 3.0 * fast->noise;
-    if (!sig_s && !sig_f)
-      o << " the model has the right hysteresis at every rate (within 3x noise)";
-    else if (sig_s && ms > 0 && std::abs(mf) < 2.0 * std::abs(ms) && mf > 0.5 * ms)
-      o << " the model misses " << fmt(ms * 1e0) << " kPa at " << fmt(qs.front()->rate_mm_min) << " mm/min and " << fmt(mf)
-        << " kPa at " << fmt(qs.back()->rate_mm_min)
-        << " mm/min: a missing dissipation that does NOT vanish at slow rates (rate-independent)";
-    else if (sig_f && mf > 0 && mf > 2.0 * std::max(ms, 0.0))
-      o << " the missing hysteresis grows with rate (" << fmt(ms) << " -> " << fmt(mf)
-        << " kPa): a missing RATE-DEPENDENT dissipation";
-    else
-      o << " hysteresis error " << fmt(-ms) << " kPa (slowest) and " << fmt(-mf) << " kPa (fastest), model - measured";
-    ev.push_back(o.str());
-  }
-  // Loading vs unloading (first loading vs unloading/reloading below the previous maximum).
-  for (const auto* t : qs) {
-    const RegionError *l = t->region("loading"), *u = t->region("unloading");
-    if (l->ratio() > 2.0 || u->ratio() > 2.0)
-      ev.push_back(t->name + ": first loading error " + fmt(l->rms) + " kPa (" + fmt(l->ratio(), 2) + "x noise, bias " +
-                   fmt(l->bias) + "), unloading error " + fmt(u->rms) + " kPa (" + fmt(u->ratio(), 2) + "x noise, bias " +
-                   fmt(u->bias) + ")" +
-                   (u->ratio() > 2.0 * std::max(1.0, l->ratio()) ? ": the failure is on unloading, first loading fits" : ""));
-  }
-  // Phase and modulus error vs frequency, per dynamic test.
-  for (const auto* t : dyn) {
-    const RegionError *pl = t->region("band_low_phase"), *ph = t->region("band_high_phase");
-    const RegionError *ml = t->region("band_low_modulus"), *mh = t->region("band_high_modulus");
-    std::ostringstream o;
-    o << t->name << ": phase error (model - measured) " << fmt(pl->bias) << " deg in the low band, " << fmt(ph->bias)
-      << " deg in the high band (noise " << fmt(t->noise.phase) << " deg)";
-    if (std::abs(ph->bias - pl->bias) > 3.0 * t->noise.phase && std::abs(ph->bias) > std::abs(pl->bias))
-      o << ": the phase error GROWS with frequency";
-    else if (std::abs(pl->bias) > 3.0 * t->noise.phase && std::abs(ph->bias - pl->bias) < 0.5 * std::abs(pl->bias))
-      o << ": a frequency-INDEPENDENT loss is missing or extra";
-    o << "; |E*| error " << fmt(ml->bias) << " -> " << fmt(mh->bias) << " kPa (noise " << fmt(t->noise.modulus * 1e3) << ")";
-    ev.push_back(o.str());
-  }
-  // Preload dependence of the dynamic modulus.
-  if (dyn.size() >= 2) {
-    std::ostringstream o;
-    o << "|E*| bias (model - measured) by preload:";
-    double lo = 1e300, hi = -1e300;
-    for (const auto* t : dyn) {
-      const RegionError* a = t->region("all_modulus");
-      const double rel = a->bias / (a->nrmse > 0 ? a->rms / a->nrmse : 1.0);
-      o << " " << fmt(100 * t->preload) << "% preload " << fmt(100 * rel, 2) << "%;";
-      lo = std::min(lo, a->bias / std::max(a->noise, 1e-300));
-      hi = std::max(hi, a->bias / std::max(a->noise, 1e-300));
-    }
-    if (hi - lo > 3.0) o << " the modulus error DEPENDS ON THE PRELOAD (" << fmt(hi - lo, 2) << " noise units apart)";
-    else o << " no preload dependence beyond noise";
-    ev.push_back(o.str());
-  }
+  if (qs.size() >= 2) ev.push_back(hysteresis_rate_evidence(qs));
+  for (const auto* t : qs)
+    if (std::string e = loading_unloading_evidence(*t); !e.empty()) ev.push_back(std::move(e));
+  for (const auto* t : dyn) ev.push_back(frequency_evidence(*t));
+  if (dyn.size() >= 2) ev.push_back(preload_evidence(dyn));
   return ev;
 }
 
-Diagnosis diagnose(const material::MaterialSpec& baseline, const Campaign& campaign, const DiagnoseOptions& options,
-                   std::ostream& log) {
-  const auto t0 = Clock::now();
-  Diagnosis d;
-  d.extended = baseline;
-  const material::MaterialDefinition def = material::build_material(baseline, "baseline material");
+namespace {
+
+/// What the campaign cannot tell apart: too few tests, rates, preloads, or no test of a kind.
+std::vector<std::string> campaign_warnings(const Campaign& campaign) {
+  std::vector<std::string> w;
   const std::size_t tests = campaign.quasi_static.size() + campaign.dynamic.size();
   if (tests < 2)
-    d.warnings.push_back(
+    w.push_back(
         "the campaign has only " + std::to_string(tests) +
         " test: rate effects (viscous, pneumatic) cannot be told from rate-independent ones (friction, Mullins) "
         "without two rates, nor preload dependence without two preloads; the ranking below rests on one test");
   if (campaign.quasi_static.size() == 1)
-    d.warnings.push_back("one quasi-static rate: rate dependence of the hysteresis cannot be observed");
+    w.push_back("one quasi-static rate: rate dependence of the hysteresis cannot be observed");
   if (campaign.quasi_static.empty())
-    d.warnings.push_back("no quasi-static test: loading vs unloading and hysteresis signatures unavailable");
+    w.push_back("no quasi-static test: loading vs unloading and hysteresis signatures unavailable");
   if (campaign.dynamic.size() == 1)
-    d.warnings.push_back("one dynamic preload: preload dependence of the modulus cannot be observed");
-  if (campaign.dynamic.empty()) d.warnings.push_back("no dynamic test: frequency signatures unavailable");
+    w.push_back("one dynamic preload: preload dependence of the modulus cannot be observed");
+  if (campaign.dynamic.empty()) w.push_back("no dynamic test: frequency signatures unavailable");
+  return w;
+}
 
+/// Baseline: noise estimates, the baseline material on every test, its chi2 (= BIC, no added parameter),
+/// the data signatures. Throws InputError when a baseline test run fails.
+void compare_baseline(const material::Material& model, const Campaign& campaign, const DiagnoseOptions& options,
+                      Diagnosis& d, std::ostream& log) {
   d.noise = estimate_noise(campaign);
-  d.baseline = compare_campaign(*def.model, campaign, options.compare, d.noise);
+  d.baseline = compare_campaign(model, campaign, options.compare, d.noise);
   for (const auto& w : d.baseline.warnings) d.warnings.push_back(w);
   for (const auto& t : d.baseline.tests)
     if (!t.failure.empty())
       throw InputError("baseline material: the model run of test " + t.name + " fails: " + t.failure);
-  const std::vector<double> r0 = normalised_residuals(d.baseline, options.quasi_static_points);
-  d.residuals = r0.size();
+  d.residuals = normalised_residuals(d.baseline, options.quasi_static_points).size();
   d.baseline_chi2 = chi2_of(d.baseline, options.quasi_static_points);
   d.baseline_bic = d.baseline_chi2;  // k = 0 added parameters
   d.evidence = signature_evidence(d.baseline);
   d.at_noise_level = d.baseline.at_noise_level(options.compare.noise_level_ratio);
-  log << "diagnose: baseline compared on " << tests << " tests in " << fmt(d.baseline.seconds, 2) << " s, chi2/N "
-      << fmt(d.baseline_chi2 / std::max<std::size_t>(1, d.residuals)) << "\n";
+  log << "diagnose: baseline compared on " << campaign.quasi_static.size() + campaign.dynamic.size() << " tests in "
+      << fmt(d.baseline.seconds, 2) << " s, chi2/N " << fmt(d.baseline_chi2 / std::max<std::size_t>(1, d.residuals))
+      << "\n";
+}
+
+/// The verdict when no candidate is to be fitted: no noise estimate, or the baseline already at the noise
+/// level (nothing is left to explain); false otherwise.
+bool verdict_without_candidates(const DiagnoseOptions& options, Diagnosis& d) {
   if (d.residuals == 0) {
     d.warnings.push_back("no test has a noise estimate: cannot judge any effect against noise");
     d.verdict = "Cannot diagnose: no test has enough samples to estimate the measurement noise.";
-    d.seconds = seconds_since(t0);
-    return d;
+    return true;
   }
-  if (d.at_noise_level) {
-    double worst = 0.0;
-    std::string name;
-    for (const auto& t : d.baseline.tests)
-      if (t.noise_ratio() > worst) worst = t.noise_ratio(), name = t.name;
-    d.verdict = "No effect is missing: every test is within " + fmt(options.compare.noise_level_ratio, 2) +
-                "x its measurement noise (worst: " + name + " at " + fmt(worst, 3) +
-                "x). Adding parameters cannot be justified by these data.";
-    d.fragment = nullptr;
-    d.seconds = seconds_since(t0);
-    return d;
-  }
+  if (!d.at_noise_level) return false;
+  double worst = 0.0;
+  std::string name;
+  for (const auto& t : d.baseline.tests)
+    if (t.noise_ratio() > worst) worst = t.noise_ratio(), name = t.name;
+  d.verdict = "No effect is missing: every test is within " + fmt(options.compare.noise_level_ratio, 2) +
+              "x its measurement noise (worst: " + name + " at " + fmt(worst, 3) +
+              "x). Adding parameters cannot be justified by these data.";
+  d.fragment = nullptr;
+  return true;
+}
 
-  // Singles.
+/// Single candidates: each catalogue effect (or the requested ones) not already in the material;
+/// needs_viscoelastic ones only on a Prony material (else a warning).
+std::vector<std::vector<material::EffectSpec>> single_candidates(const material::MaterialSpec& baseline,
+                                                                 const DiagnoseOptions& options,
+                                                                 std::vector<std::string>& warnings) {
   std::vector<std::vector<material::EffectSpec>> singles;
   for (const auto& info : material::effect_catalog()) {
     if (!options.candidates.empty() &&
@@ -416,65 +450,101 @@ Diagnosis diagnose(const material::MaterialSpec& baseline, const Campaign& campa
     if (std::any_of(baseline.effects.begin(), baseline.effects.end(), [&](const auto& e) { return e.kind == info.kind; }))
       continue;
     if (info.needs_viscoelastic && baseline.prony.empty()) {
-      d.warnings.push_back(info.kind + ": not a candidate (needs a viscoelastic material)");
+      warnings.push_back(info.kind + ": not a candidate (needs a viscoelastic material)");
       continue;
     }
     singles.push_back({material::EffectSpec{info.kind, {}}});
   }
-  const bool base_ref = baseline.base == material::MaterialSpec::Base::hyperfoam && !baseline.hyperfoam.empty();
-  auto job = [&](std::vector<material::EffectSpec> effects, bool scan) {
-    return [&, effects, scan] {
-      return fit_candidate(baseline, effects, campaign, d.noise, d.residuals, d.baseline_bic, options, scan,
-                           options.joint_base && base_ref);
+  return singles;
+}
+
+/// One log line per candidate fit: dBIC, model runs, time, and the failure message when asked.
+void log_fit(std::ostream& log, const CandidateFit& f, bool with_failure) {
+  log << "diagnose: " << f.name() << ": dBIC " << fmt(f.delta_bic, 4) << ", " << f.evaluations << " runs, "
+      << fmt(f.seconds, 2) << " s" << (with_failure && !f.converged ? " (" + f.message + ")" : "") << "\n";
+}
+
+/// What every candidate fit shares: the baseline, the campaign, its noise, N and the baseline BIC.
+struct CandidateJobs {
+  const material::MaterialSpec& baseline;
+  const Campaign& campaign;
+  const DiagnoseOptions& options;
+  const Diagnosis& d;
+  /// The base refit reference is possible: a hyperfoam base with terms.
+  bool base_ref() const {
+    return baseline.base == material::MaterialSpec::Base::hyperfoam && !baseline.hyperfoam.empty();
+  }
+  /// A job fitting these effects (scan: coarse start scan first; refit_base: with the base-refit factors).
+  std::function<CandidateFit()> job(std::vector<material::EffectSpec> effects, bool scan, bool refit_base) const {
+    return [this, effects = std::move(effects), scan, refit_base] {
+      return fit_candidate(baseline, effects, campaign, d.noise, d.residuals, d.baseline_bic, options, scan, refit_base);
     };
-  };
+  }
+};
+
+/// Candidates: every single effect (with the base-refit factors under joint_base) and the reference, the
+/// base refitted WITHOUT any effect. An effect must beat the reference too, else the residual is as well
+/// explained by a base calibration that is slightly off. Returns the singles in catalogue order.
+std::vector<CandidateFit> fit_singles_and_reference(const CandidateJobs& c,
+                                                    const std::vector<std::vector<material::EffectSpec>>& singles,
+                                                    Diagnosis& d, std::ostream& log) {
   std::vector<std::function<CandidateFit()>> jobs;
-  for (const auto& s : singles) jobs.push_back(job(s, true));
-  // Reference: the base refitted WITHOUT any effect (hyperfoam moduli only). An effect must beat it too,
-  // else the residual is as well explained by a base calibration that is slightly off.
-  if (base_ref)
-    jobs.push_back([&] {
-      return fit_candidate(baseline, {}, campaign, d.noise, d.residuals, d.baseline_bic, options, true, true);
-    });
-  std::vector<CandidateFit> fits = run_all(jobs, options.threads);
-  if (base_ref) {
+  for (const auto& s : singles) jobs.push_back(c.job(s, true, c.options.joint_base && c.base_ref()));
+  if (c.base_ref()) jobs.push_back(c.job({}, true, true));
+  std::vector<CandidateFit> fits = run_all(jobs, c.options.threads);
+  if (c.base_ref()) {
     d.base_refit = std::move(fits.back());
     fits.pop_back();
-    log << "diagnose: " << d.base_refit->name() << ": dBIC " << fmt(d.base_refit->delta_bic, 4) << ", "
-        << d.base_refit->evaluations << " runs, " << fmt(d.base_refit->seconds, 2) << " s\n";
+    log_fit(log, *d.base_refit, false);
   }
-  for (const auto& f : fits)
-    log << "diagnose: " << f.name() << ": dBIC " << fmt(f.delta_bic, 4) << ", " << f.evaluations << " runs, "
-        << fmt(f.seconds, 2) << " s" << (f.converged ? "" : " (" + f.message + ")") << "\n";
+  for (const auto& f : fits) log_fit(log, f, true);
+  return fits;
+}
 
-  // Pairs of the best singles.
+/// The singles to combine in pairs, best dBIC first: the `pairs_from` best converged ones with dBIC > 0,
+/// none when the best single already brings every test to the noise level (nothing left for a second effect).
+std::vector<std::size_t> pair_sources(const std::vector<CandidateFit>& fits, const DiagnoseOptions& options) {
   std::vector<std::size_t> order(fits.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](auto a, auto b) { return fits[a].delta_bic > fits[b].delta_bic; });
   std::vector<std::size_t> top;
-  // Pairs only when the best single leaves a test beyond noise (else nothing is left for a second effect).
   const bool single_enough = !order.empty() && fits[order.front()].converged &&
                              fits[order.front()].compare.at_noise_level(options.compare.noise_level_ratio);
   if (!single_enough)
-  for (std::size_t i : order)
-    if (fits[i].converged && fits[i].delta_bic > 0 && static_cast<int>(top.size()) < options.pairs_from) top.push_back(i);
-  jobs.clear();
+    for (std::size_t i : order)
+      if (fits[i].converged && fits[i].delta_bic > 0 && static_cast<int>(top.size()) < options.pairs_from) top.push_back(i);
+  return top;
+}
+
+/// Pairs of the best singles, two by two, started from their single fits (no scan).
+std::vector<CandidateFit> fit_pairs(const CandidateJobs& c, const std::vector<CandidateFit>& fits,
+                                    const std::vector<std::size_t>& top, std::ostream& log) {
+  std::vector<std::function<CandidateFit()>> jobs;
   for (std::size_t a = 0; a < top.size(); ++a)
     for (std::size_t b = a + 1; b < top.size(); ++b) {
       std::vector<material::EffectSpec> e = fits[top[a]].effects;
       e.push_back(fits[top[b]].effects.front());
-      jobs.push_back(job(e, false));
+      jobs.push_back(c.job(e, false, c.options.joint_base && c.base_ref()));
     }
-  std::vector<CandidateFit> pairs = run_all(jobs, options.threads);
-  for (const auto& f : pairs)
-    log << "diagnose: " << f.name() << ": dBIC " << fmt(f.delta_bic, 4) << ", " << f.evaluations << " runs, "
-        << fmt(f.seconds, 2) << " s\n";
+  std::vector<CandidateFit> pairs = run_all(jobs, c.options.threads);
+  for (const auto& f : pairs) log_fit(log, f, false);
+  return pairs;
+}
 
-  const double base_gain = d.base_refit && d.base_refit->converged ? std::max(0.0, d.base_refit->delta_bic) : 0.0;
-  for (auto& f : fits) f.supported = f.converged && f.delta_bic > base_gain + options.strong_evidence;
+/// dBIC of the base-refit reference when it converged (0 when below 0 or absent).
+double base_gain(const Diagnosis& d) {
+  return d.base_refit && d.base_refit->converged ? std::max(0.0, d.base_refit->delta_bic) : 0.0;
+}
+
+/// Ranking: a single is supported when it beats the reference by strong_evidence, a pair when it beats the
+/// best single and the reference by strong_evidence; supported first, then by dBIC; warnings for
+/// failed or unconverged candidates.
+void rank_candidates(std::vector<CandidateFit> fits, std::vector<CandidateFit> pairs, const std::vector<std::size_t>& top,
+                     const DiagnoseOptions& options, Diagnosis& d) {
+  const double gain = base_gain(d);
+  for (auto& f : fits) f.supported = f.converged && f.delta_bic > gain + options.strong_evidence;
   const double best_single = top.empty() ? 0.0 : fits[top.front()].delta_bic;
-  for (auto& f : pairs)
-    f.supported = f.converged && f.delta_bic > std::max(best_single, base_gain) + options.strong_evidence;
+  for (auto& f : pairs) f.supported = f.converged && f.delta_bic > std::max(best_single, gain) + options.strong_evidence;
   for (auto& f : fits) d.candidates.push_back(std::move(f));
   for (auto& f : pairs) d.candidates.push_back(std::move(f));
   for (const auto& f : d.candidates)
@@ -486,64 +556,101 @@ Diagnosis diagnose(const material::MaterialSpec& baseline, const Campaign& campa
     if (a.supported != b.supported) return a.supported;
     return a.delta_bic > b.delta_bic;
   });
+}
 
-  if (!d.candidates.empty() && d.candidates.front().supported) {
-    d.winner = 0;
-    const CandidateFit& w = d.candidates.front();
-    d.winner_at_noise_level = w.compare.at_noise_level(options.compare.noise_level_ratio);
-    nlohmann::json effects = nlohmann::json::array();
-    for (const auto& e : baseline.effects) {
-      nlohmann::json j{{"kind", e.kind}};
-      for (const auto& [k, v] : e.parameters) j[k] = v;
-      effects.push_back(j);
-    }
-    for (const auto& e : w.effects) {
-      nlohmann::json j{{"kind", e.kind}};
-      for (const auto& [k, v] : e.parameters) j[k] = v;
-      if (material::find_effect(e.kind)->needs_viscoelastic) effects.insert(effects.begin(), j);
-      else effects.push_back(j);
-    }
-    d.fragment = {{"effects", effects}};
-    d.extended = w.fitted;
-    std::ostringstream o;
-    o << "Add " << w.name() << " (dBIC " << fmt(w.delta_bic, 4) << " for " << w.parameters
-      << " parameters; chi2/N " << fmt(d.baseline_chi2 / d.residuals) << " -> " << fmt(w.chi2 / d.residuals) << "). ";
-    if (w.base_refitted)
-      o << "Fitted together with the base moduli (joint): use material_extended.json, whose hyperfoam mu_i and Prony "
-           "g_i are refitted too; the fragment alone on the old base is not the fitted model. ";
-    if (d.winner_at_noise_level) {
-      o << "With it every test falls to the noise level (within " << fmt(options.compare.noise_level_ratio, 2) << "x).";
-    } else {
-      o << "Tests still beyond noise after adding it:";
-      for (const auto& t : w.compare.tests)
-        if (t.noise_ratio() > options.compare.noise_level_ratio) o << " " << t.name << " (" << fmt(t.noise_ratio(), 3) << "x)";
-      o << ": the base calibration is off there, or a further effect outside the catalogue is missing (rerun `cushion fit`, "
-           "then diagnose again).";
-    }
-    d.verdict = o.str();
+/// One effect as a material-file entry: {"kind": ..., parameter: value, ...}.
+nlohmann::json effect_json(const material::EffectSpec& e) {
+  nlohmann::json j{{"kind", e.kind}};
+  for (const auto& [k, v] : e.parameters) j[k] = v;
+  return j;
+}
+
+/// The "effects" fragment: the baseline's effects plus the winner's (needs_viscoelastic ones first).
+nlohmann::json effects_fragment(const material::MaterialSpec& baseline, const CandidateFit& w) {
+  nlohmann::json effects = nlohmann::json::array();
+  for (const auto& e : baseline.effects) effects.push_back(effect_json(e));
+  for (const auto& e : w.effects) {
+    if (material::find_effect(e.kind)->needs_viscoelastic) effects.insert(effects.begin(), effect_json(e));
+    else effects.push_back(effect_json(e));
+  }
+  nlohmann::json fragment = {{"effects", effects}};
+  return fragment;
+}
+
+/// Verdict with a supported winner (candidates.front()): add it, its fragment, the extended material, and
+/// the tests still beyond noise.
+void winner_verdict(const material::MaterialSpec& baseline, const DiagnoseOptions& options, Diagnosis& d) {
+  d.winner = 0;
+  const CandidateFit& w = d.candidates.front();
+  d.winner_at_noise_level = w.compare.at_noise_level(options.compare.noise_level_ratio);
+  d.fragment = effects_fragment(baseline, w);
+  d.extended = w.fitted;
+  std::ostringstream o;
+  o << "Add " << w.name() << " (dBIC " << fmt(w.delta_bic, 4) << " for " << w.parameters
+    << " parameters; chi2/N " << fmt(d.baseline_chi2 / d.residuals) << " -> " << fmt(w.chi2 / d.residuals) << "). ";
+  if (w.base_refitted)
+    o << "Fitted together with the base moduli (joint): use material_extended.json, whose hyperfoam mu_i and Prony "
+         "g_i are refitted too; the fragment alone on the old base is not the fitted model. ";
+  if (d.winner_at_noise_level) {
+    o << "With it every test falls to the noise level (within " << fmt(options.compare.noise_level_ratio, 2) << "x).";
   } else {
-    d.fragment = nullptr;
-    std::ostringstream o;
-    if (base_gain > options.strong_evidence) {
-      const CandidateFit& b = *d.base_refit;
-      o << "No effect can be told from a base calibration that is slightly off: refitting only the base moduli "
-           "(hyperfoam mu_i and Prony g_i, no effect) gives dBIC "
-        << fmt(b.delta_bic, 4) << " (chi2/N " << fmt(d.baseline_chi2 / d.residuals) << " -> " << fmt(b.chi2 / d.residuals)
-        << (b.compare.at_noise_level(options.compare.noise_level_ratio) ? ", every test at the noise level" : "")
-        << ") and no catalogue effect beats it by dBIC > " << fmt(options.strong_evidence);
-      if (!d.candidates.empty() && std::isfinite(d.candidates.front().delta_bic))
-        o << " (best: " << d.candidates.front().name() << ", dBIC " << fmt(d.candidates.front().delta_bic, 4) << ")";
-      o << ". Recalibrate the base first (rerun `cushion fit`, e.g. with --refit-on all), then diagnose again";
-      if (!options.joint_base)
-        o << "; if the baseline was fitted on this same campaign, the fit may have absorbed the effect: rerun with "
-             "--joint-base (each effect fitted together with the base moduli)";
-      o << ".";
-    } else {
-      o << "The model fails beyond noise, but no catalogue effect reduces the penalised error convincingly (dBIC > "
-        << fmt(options.strong_evidence) << "): the base calibration is the first suspect (rerun `cushion fit`, e.g. with "
-        << "--refit-on all).";
-    }
-    d.verdict = o.str();
+    o << "Tests still beyond noise after adding it:";
+    for (const auto& t : w.compare.tests)
+      if (t.noise_ratio() > options.compare.noise_level_ratio) o << " " << t.name << " (" << fmt(t.noise_ratio(), 3) << "x)";
+    o << ": the base calibration is off there, or a further effect outside the catalogue is missing (rerun `cushion fit`, "
+         "then diagnose again).";
+  }
+  d.verdict = o.str();
+}
+
+/// Verdict without a supported candidate: recalibrate the base, either because the base refit explains the
+/// residual as well as any effect or because no effect reduces the penalised error convincingly.
+void no_winner_verdict(const DiagnoseOptions& options, Diagnosis& d) {
+  d.fragment = nullptr;
+  std::ostringstream o;
+  if (base_gain(d) > options.strong_evidence) {
+    const CandidateFit& b = *d.base_refit;
+    o << "No effect can be told from a base calibration that is slightly off: refitting only the base moduli "
+         "(hyperfoam mu_i and Prony g_i, no effect) gives dBIC "
+      << fmt(b.delta_bic, 4) << " (chi2/N " << fmt(d.baseline_chi2 / d.residuals) << " -> " << fmt(b.chi2 / d.residuals)
+      << (b.compare.at_noise_level(options.compare.noise_level_ratio) ? ", every test at the noise level" : "")
+      << ") and no catalogue effect beats it by dBIC > " << fmt(options.strong_evidence);
+    if (!d.candidates.empty() && std::isfinite(d.candidates.front().delta_bic))
+      o << " (best: " << d.candidates.front().name() << ", dBIC " << fmt(d.candidates.front().delta_bic, 4) << ")";
+    o << ". Recalibrate the base first (rerun `cushion fit`, e.g. with --refit-on all), then diagnose again";
+    if (!options.joint_base)
+      o << "; if the baseline was fitted on this same campaign, the fit may have absorbed the effect: rerun with "
+           "--joint-base (each effect fitted together with the base moduli)";
+    o << ".";
+  } else {
+    o << "The model fails beyond noise, but no catalogue effect reduces the penalised error convincingly (dBIC > "
+      << fmt(options.strong_evidence) << "): the base calibration is the first suspect (rerun `cushion fit`, e.g. with "
+      << "--refit-on all).";
+  }
+  d.verdict = o.str();
+}
+
+}  // namespace
+
+Diagnosis diagnose(const material::MaterialSpec& baseline, const Campaign& campaign, const DiagnoseOptions& options,
+                   std::ostream& log) {
+  const auto t0 = Clock::now();
+  Diagnosis d;
+  d.extended = baseline;
+  const material::MaterialDefinition def = material::build_material(baseline, "baseline material");
+  d.warnings = campaign_warnings(campaign);
+  compare_baseline(*def.model, campaign, options, d, log);
+  if (!verdict_without_candidates(options, d)) {
+    const CandidateJobs jobs{baseline, campaign, options, d};
+    std::vector<CandidateFit> singles =
+        fit_singles_and_reference(jobs, single_candidates(baseline, options, d.warnings), d, log);
+    const std::vector<std::size_t> top = pair_sources(singles, options);
+    std::vector<CandidateFit> pairs = fit_pairs(jobs, singles, top, log);
+    rank_candidates(std::move(singles), std::move(pairs), top, options, d);
+    if (!d.candidates.empty() && d.candidates.front().supported)
+      winner_verdict(baseline, options, d);
+    else
+      no_winner_verdict(options, d);
   }
   d.seconds = seconds_since(t0);
   return d;

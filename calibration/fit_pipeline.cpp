@@ -33,66 +33,87 @@ std::string percent(double x) {
   return o.str();
 }
 
-}  // namespace
+/// Records a run warning in the result and the log.
+void warn(FitResult& R, std::string message, std::ostream& log) {
+  R.warnings.push_back(std::move(message));
+  log << "fit: warning: " << R.warnings.back() << "\n";
+}
 
-FitResult fit_pipeline(const Campaign& campaign, const FitOptions& options, std::ostream& log) {
-  FitResult R;
-  R.options = options;
-  R.run_normalisation = options.normalisation;
-  Stopwatch clock(R.timings);
+/// The campaign's calibration tests (one of each kind) and the dynamic test's timing, shared by the steps.
+struct CalibrationTests {
+  const Campaign& campaign;
+  const FitOptions& options;
+  const QuasiStaticTest& qs;
+  const DynamicTest& dyn;
+  std::optional<DynamicSchedule> schedule;  ///< paper 2.3 timing; empty: about a relaxed preload
+  const DynamicSchedule* sched() const { return schedule ? &*schedule : nullptr; }
+};
+
+/// The calibration tests of the campaign; throws InputError when a kind has none.
+CalibrationTests calibration_tests(const Campaign& campaign, const FitOptions& options) {
   const QuasiStaticTest* qs = campaign.quasi_static_calibration();
   const DynamicTest* dyn = campaign.dynamic_calibration();
   if (!qs) throw InputError(campaign.manifest.string() + ": tests: no quasi-static calibration test");
   if (!dyn) throw InputError(campaign.manifest.string() + ": tests: no dynamic calibration test");
-  R.quasi_static_name = qs->name;
-  R.dynamic_name = dyn->name;
+  std::optional<DynamicSchedule> schedule;
+  if (!options.relaxed_preload) {
+    schedule = options.dynamic_schedule;
+    schedule->thickness = campaign.specimen.thickness;
+    if (dyn->preload_rate_mm_min > 0.0) schedule->preload_rate_mm_min = dyn->preload_rate_mm_min;  // campaign key
+  }
+  return {campaign, options, *qs, *dyn, schedule};
+}
 
-  // Steps 1-2: segments, difference stress pairs.
-  R.segments = detect_segments(qs->record);
-  for (const auto& w : R.segments.warnings) log << "fit: warning: " << qs->name << ": " << w << "\n";
+/// Steps 1-2: segments of the quasi-static record and the loading/unloading pairs at equal strain whose
+/// difference stress the hereditary fit uses.
+void segment_and_pair(const CalibrationTests& c, FitResult& R, std::ostream& log) {
+  const QuasiStaticTest& qs = c.qs;
+  R.segments = detect_segments(qs.record);
+  for (const auto& w : R.segments.warnings) log << "fit: warning: " << qs.name << ": " << w << "\n";
   // The paper pairs at 1 s intervals; a short unloading branch (lift-off) may leave too few pairs for
   // the 4M hereditary parameters: then the interval is halved (down to the sampling interval), with a warning.
-  const std::size_t wanted = 3 * 4 * static_cast<std::size_t>(options.hereditary.modes);
-  const double sample_dt = 1.0 / sampling_rate(qs->record);
+  const std::size_t wanted = 3 * 4 * static_cast<std::size_t>(c.options.hereditary.modes);
+  const double sample_dt = 1.0 / sampling_rate(qs.record);
   R.pair_interval = 1.0;
-  R.pairs = pair_loading_unloading(qs->record, R.segments, R.pair_interval);
+  R.pairs = pair_loading_unloading(qs.record, R.segments, R.pair_interval);
   while (R.pairs.t1.size() < wanted && R.pair_interval / 2.0 >= sample_dt * 0.999) {
     R.pair_interval /= 2.0;
-    R.pairs = pair_loading_unloading(qs->record, R.segments, R.pair_interval);
+    R.pairs = pair_loading_unloading(qs.record, R.segments, R.pair_interval);
   }
-  if (R.pair_interval < 1.0) {
-    R.warnings.push_back("only a short unloading branch: difference stress paired every " + std::to_string(R.pair_interval) +
-                         " s instead of 1 s");
-    log << "fit: warning: " << R.warnings.back() << "\n";
-  }
-  log << "fit: [1-2] " << qs->name << ": loading " << R.segments.load_end - R.segments.load_begin + 1
+  if (R.pair_interval < 1.0)
+    warn(R, "only a short unloading branch: difference stress paired every " + std::to_string(R.pair_interval) +
+                " s instead of 1 s", log);
+  log << "fit: [1-2] " << qs.name << ": loading " << R.segments.load_end - R.segments.load_begin + 1
       << " samples to " << percent(R.segments.peak_strain) << ", hold " << R.segments.hold_duration << " s, "
       << R.pairs.t1.size() << " loading/unloading pairs every " << R.pair_interval << " s\n";
-  if (R.pairs.t1.size() < 4 * static_cast<std::size_t>(options.hereditary.modes) + 1)
-    throw InputError(qs->record.source + ": only " + std::to_string(R.pairs.t1.size()) +
+  if (R.pairs.t1.size() < 4 * static_cast<std::size_t>(c.options.hereditary.modes) + 1)
+    throw InputError(qs.record.source + ": only " + std::to_string(R.pairs.t1.size()) +
                      " loading/unloading pairs at equal strain (the unloading branch is too short)");
-  clock.lap("segments and pairs");
+}
 
-  // Step 3: hereditary fit; Table 2 on the paper's protocol.
-  R.hereditary = fit_hereditary(qs->record, R.segments, R.pairs, options.hereditary);
+/// Step 3: hereditary modes from the difference stress; fitted and Table 2 modes on the paper's protocol.
+void hereditary_step(const CalibrationTests& c, FitResult& R, std::ostream& log) {
+  R.hereditary = fit_hereditary(c.qs.record, R.segments, R.pairs, c.options.hereditary);
   R.table2_curve = protocol_curve(paper_table2_modes());
   R.fitted_curve = protocol_curve(R.hereditary.modes);
   log << "fit: [3] hereditary fit (" << R.hereditary.starts << " starts): RMSE "
       << R.hereditary.rmse * 1e3 << " kPa = " << percent(R.hereditary.rmse_relative) << " of peak stress\n";
-  clock.lap("hereditary fit");
+}
 
-  // Step 4: decomposition.
-  R.decomposition = decompose(qs->record, R.segments, R.hereditary.modes);
+/// Step 4: the quasi-static stress split into its elastic and hereditary parts.
+void decomposition_step(const CalibrationTests& c, FitResult& R, std::ostream& log) {
+  R.decomposition = decompose(c.qs.record, R.segments, R.hereditary.modes);
   log << "fit: [4] decomposition: loading/unloading elastic stress mismatch " << percent(R.decomposition.branch_mismatch)
       << " of peak\n";
-  clock.lap("decomposition");
+}
 
-  // Step 5: hyperfoam.
+/// Step 5: hyperfoam terms (and nu unless fixed) fitted to the elastic stress.
+void hyperfoam_step(const CalibrationTests& c, FitResult& R, std::ostream& log) {
   HyperfoamFitOptions ho;
-  ho.terms = options.terms;
-  ho.lateral = qs->lateral;
-  ho.fit_nu = !options.nu.has_value();
-  ho.nu = options.nu.value_or(0.0);
+  ho.terms = c.options.terms;
+  ho.lateral = c.qs.lateral;
+  ho.fit_nu = !c.options.nu.has_value();
+  ho.nu = c.options.nu.value_or(0.0);
   try {
     R.hyperfoam = fit_hyperfoam(R.decomposition.elastic, ho);
   } catch (const std::invalid_argument& e) {
@@ -101,91 +122,99 @@ FitResult fit_pipeline(const Campaign& campaign, const FitOptions& options, std:
   for (const auto& w : R.hyperfoam.warnings) log << "fit: warning: hyperfoam: " << w << "\n";
   log << "fit: [5] hyperfoam N=" << R.hyperfoam.terms.size() << ", nu " << R.hyperfoam.nu << ": RMS error "
       << percent(R.hyperfoam.rms_error) << " of peak, " << (R.hyperfoam.stable ? "stable" : "UNSTABLE") << "\n";
-  clock.lap("hyperfoam fit");
+}
 
-  // Step 6: Prony.
+/// Step 6: Prony series E_inf + sum E_i at the given tau_i fitted to the dynamic moduli.
+void prony_step(const CalibrationTests& c, FitResult& R, std::ostream& log) {
   try {
-    R.prony = fit_prony(dyn->moduli, options.tau);
+    R.prony = fit_prony(c.dyn.moduli, c.options.tau);
   } catch (const std::invalid_argument& e) {
-    throw InputError(dyn->file.string() + ": " + e.what());
+    throw InputError(c.dyn.file.string() + ": " + e.what());
   }
-  log << "fit: [6] Prony fit at " << dyn->moduli.frequency.size() << " frequencies: chi2 " << R.prony.chi2
+  log << "fit: [6] Prony fit at " << c.dyn.moduli.frequency.size() << " frequencies: chi2 " << R.prony.chi2
       << ", E_inf " << R.prony.E_inf * 1e3 << " kPa\n";
-  clock.lap("Prony fit");
+}
 
-  FitOptions run_options = options;
-  std::optional<DynamicSchedule> schedule;
-  if (!options.relaxed_preload) {
-    schedule = options.dynamic_schedule;
-    schedule->thickness = campaign.specimen.thickness;
-    if (dyn->preload_rate_mm_min > 0.0) schedule->preload_rate_mm_min = dyn->preload_rate_mm_min;  // campaign key
+/// Step 7, one normalisation: the solver's model with these relative moduli on both calibration tests. A
+/// material the solver cannot build gets NaN errors and a warning; if it was the requested one, the run
+/// falls back to the tangent normalisation.
+void judge_normalisation(const CalibrationTests& c, PronyNormalisation n, const material::Hyperfoam& paper_base,
+                         double qs_hz, FitResult& R, std::ostream& log) {
+  const ViscoHyperfoam m{R.hyperfoam.terms, relative_moduli(R.conversion, n)};
+  auto& d = n == PronyNormalisation::paper ? R.dynamic_normalisation_paper : R.dynamic_normalisation_tangent;
+  auto& q = n == PronyNormalisation::paper ? R.quasi_static_normalisation_paper : R.quasi_static_normalisation_tangent;
+  try {
+    const auto model = build_model(m);
+    d = predict_dynamic(*model, paper_base, c.dyn, c.sched());
+    q = predict_quasi_static(*model, c.campaign.specimen, c.qs, R.segments, qs_hz);
+  } catch (const std::exception& e) {  // e.g. E_inf = 0: the paper's g_i sum to 1
+    d.magnitude_rms = d.phase_rms = q.rms_error = q.max_error = std::nan("");
+    warn(R, "Prony normalisation " + to_string(n) + " gives no usable material: " + e.what(), log);
+    if (n == c.options.normalisation) R.run_normalisation = PronyNormalisation::tangent;
+    return;
   }
-  run_options.refit_options.schedule = schedule;
-  const DynamicSchedule* sched = schedule ? &*schedule : nullptr;
+  if (n == c.options.normalisation) R.paper_material = m;
+}
 
-  // Step 7: relative moduli, both normalisations, judged by the solver's model on both tests.
-  R.conversion = convert_prony(R.prony.E_inf, R.prony.E, R.prony.tau, R.hyperfoam.terms, dyn->preload_strain);
+/// Step 7: relative moduli g_i from the Prony moduli and the hyperfoam tangent at the preload, in both
+/// normalisations, judged by the solver's model; the paper's material uses the run normalisation.
+void prony_conversion_step(const CalibrationTests& c, FitResult& R, std::ostream& log) {
+  R.conversion = convert_prony(R.prony.E_inf, R.prony.E, R.prony.tau, R.hyperfoam.terms, c.dyn.preload_strain);
   const material::Hyperfoam paper_base(R.hyperfoam.terms);
-  const double qs_hz = std::min(10.0, sampling_rate(qs->record));  // reported predictions: up to 10 Hz
-  for (PronyNormalisation n : {PronyNormalisation::paper, PronyNormalisation::tangent}) {
-    const ViscoHyperfoam m{R.hyperfoam.terms, relative_moduli(R.conversion, n)};
-    auto& d = n == PronyNormalisation::paper ? R.dynamic_normalisation_paper : R.dynamic_normalisation_tangent;
-    auto& q = n == PronyNormalisation::paper ? R.quasi_static_normalisation_paper : R.quasi_static_normalisation_tangent;
-    try {
-      const auto model = build_model(m);
-      d = predict_dynamic(*model, paper_base, *dyn, sched);
-      q = predict_quasi_static(*model, campaign.specimen, *qs, R.segments, qs_hz);
-    } catch (const std::exception& e) {  // e.g. E_inf = 0: the paper's g_i sum to 1
-      d.magnitude_rms = d.phase_rms = q.rms_error = q.max_error = std::nan("");
-      R.warnings.push_back("Prony normalisation " + to_string(n) + " gives no usable material: " + e.what());
-      log << "fit: warning: " << R.warnings.back() << "\n";
-      if (n == options.normalisation) R.run_normalisation = PronyNormalisation::tangent;
-      continue;
-    }
-    if (n == options.normalisation) R.paper_material = m;
-  }
-  if (R.run_normalisation != options.normalisation)
+  const double qs_hz = std::min(10.0, sampling_rate(c.qs.record));  // reported predictions: up to 10 Hz
+  for (PronyNormalisation n : {PronyNormalisation::paper, PronyNormalisation::tangent})
+    judge_normalisation(c, n, paper_base, qs_hz, R, log);
+  if (R.run_normalisation != c.options.normalisation)
     R.paper_material = {R.hyperfoam.terms, relative_moduli(R.conversion, R.run_normalisation)};
-  log << "fit: [7] E_inf " << R.conversion.E_inf * 1e3 << " kPa, hyperfoam tangent at " << percent(dyn->preload_strain)
+  log << "fit: [7] E_inf " << R.conversion.E_inf * 1e3 << " kPa, hyperfoam tangent at " << percent(c.dyn.preload_strain)
       << " K_hf " << R.conversion.preload.K_hf * 1e3 << " kPa (K_v " << R.conversion.preload.K_v * 1e3
       << " kPa); |E*| error paper/tangent normalisation " << percent(R.dynamic_normalisation_paper.magnitude_rms) << " / "
       << percent(R.dynamic_normalisation_tangent.magnitude_rms) << "; quasi-static "
       << percent(R.quasi_static_normalisation_paper.rms_error) << " / "
       << percent(R.quasi_static_normalisation_tangent.rms_error) << "\n";
-  clock.lap("Prony conversion");
+}
 
-  // Step 8: consistency refit.
+/// Step 8: consistency refit of the paper's material with the solver's model on the quasi-static
+/// calibration test (and the other quasi-static targets) and the dynamic calibration test.
+void refit_step(const CalibrationTests& c, FitResult& R, std::ostream& log) {
+  std::vector<QuasiStaticTarget> targets{{&c.qs, R.segments}};
+  for (const auto& t : c.campaign.quasi_static)
+    if (&t != &c.qs && (c.options.refit_all_quasi_static || t.use == TestUse::calibration))
+      targets.push_back({&t, detect_segments(t.record)});
+  RefitOptions refit_options = c.options.refit_options;
+  refit_options.schedule = c.schedule;
+  R.refit = refit(R.paper_material, c.campaign.specimen, targets, c.dyn, refit_options);
+  const RefitResult& f = *R.refit;
+  log << "fit: [8] refit on " << targets.size() << " quasi-static test(s) and " << c.dyn.name << " (" << f.iterations << " iterations, " << f.evaluations << " model runs, "
+      << std::setprecision(3) << f.seconds << " s): quasi-static " << percent(f.quasi_static_rms_start) << " -> "
+      << percent(f.quasi_static_rms) << ", dynamic " << percent(f.dynamic_rms_start) << " -> " << percent(f.dynamic_rms)
+      << (f.accepted() ? "" : "  (NOT accepted)") << "\n";
+}
+
+/// The default material as requested: the refit when requested and accepted, else the paper's; with the reason.
+void choose_requested_default(const FitOptions& options, FitResult& R) {
   R.default_material = R.paper_material;
   R.default_choice = DefaultMaterial::paper;
-  if (options.refit) {
-    std::vector<QuasiStaticTarget> targets{{qs, R.segments}};
-    for (const auto& t : campaign.quasi_static)
-      if (&t != qs && (options.refit_all_quasi_static || t.use == TestUse::calibration))
-        targets.push_back({&t, detect_segments(t.record)});
-    R.refit = refit(R.paper_material, campaign.specimen, targets, *dyn, run_options.refit_options);
-    const RefitResult& f = *R.refit;
-    log << "fit: [8] refit on " << targets.size() << " quasi-static test(s) and " << dyn->name << " (" << f.iterations << " iterations, " << f.evaluations << " model runs, "
-        << std::setprecision(3) << f.seconds << " s): quasi-static " << percent(f.quasi_static_rms_start) << " -> "
-        << percent(f.quasi_static_rms) << ", dynamic " << percent(f.dynamic_rms_start) << " -> " << percent(f.dynamic_rms)
-        << (f.accepted() ? "" : "  (NOT accepted)") << "\n";
-    if (options.default_material == DefaultMaterial::refit) {
-      if (f.accepted()) {
-        R.default_material = f.material;
-        R.default_choice = DefaultMaterial::refit;
-        R.default_reason = "the refit converged, is Drucker-stable and lowers the joint error of the solver's model on both "
-                           "calibration tests";
-      } else {
-        R.default_reason = std::string("the refit was not accepted (") + (f.converged ? "" : "did not converge; ") +
-                           (f.stable ? "" : "unstable hyperfoam; ") + (f.improved ? "" : "no improvement; ") +
-                           "): the paper's material";
-      }
-    } else {
-      R.default_reason = "requested with --default paper";
-    }
-  } else {
+  if (!options.refit) {
     R.default_reason = "refit disabled (--no-refit)";
+  } else if (options.default_material != DefaultMaterial::refit) {
+    R.default_reason = "requested with --default paper";
+  } else if (const RefitResult& f = *R.refit; f.accepted()) {
+    R.default_material = f.material;
+    R.default_choice = DefaultMaterial::refit;
+    R.default_reason = "the refit converged, is Drucker-stable and lowers the joint error of the solver's model on both "
+                       "calibration tests";
+  } else {
+    R.default_reason = std::string("the refit was not accepted (") + (f.converged ? "" : "did not converge; ") +
+                       (f.stable ? "" : "unstable hyperfoam; ") + (f.improved ? "" : "no improvement; ") +
+                       "): the paper's material";
   }
-  // Never hand out a material the solver rejects (e.g. an unstable paper fit with sum mu <= 0).
+}
+
+/// Choose the default material: as requested, but never one the solver rejects (e.g. an unstable paper
+/// fit with sum mu <= 0); throws when neither material is usable.
+void choose_default(const FitOptions& options, FitResult& R) {
+  choose_requested_default(options, R);
   R.paper_problem = material_problem(R.paper_material);
   if (R.refit) R.refit_problem = material_problem(R.refit->material);
   if (R.default_choice == DefaultMaterial::paper && !R.paper_problem.empty() && R.refit && R.refit_problem.empty()) {
@@ -196,44 +225,88 @@ FitResult fit_pipeline(const Campaign& campaign, const FitOptions& options, std:
   if ((R.default_choice == DefaultMaterial::paper ? R.paper_problem : R.refit_problem) != "")
     throw std::runtime_error("fit: no usable material: paper's: " + R.paper_problem +
                              (R.refit ? "; refit: " + R.refit_problem : std::string()));
-  clock.lap("refit");
+}
 
-  // Every test of the campaign, paper's material vs refit.
-  const auto paper_model = build_model(R.paper_material);
+/// The paper's material and the refit (when run) as the solver's models, for the comparisons.
+struct ComparedModels {
+  std::shared_ptr<const material::Material> paper, refit;
+  material::Hyperfoam paper_base, refit_base;
+};
+
+/// One quasi-static test of the campaign: error of the paper's material and of the refit.
+TestComparison compare_quasi_static(const CalibrationTests& c, const QuasiStaticTest& t, const ComparedModels& m,
+                                    const FitResult& R) {
+  TestComparison cmp;
+  cmp.name = t.name;
+  cmp.kind = "quasi_static";
+  cmp.use = t.use == TestUse::calibration
+                ? "calibration"
+                : (c.options.refit && c.options.refit_all_quasi_static ? "refit target" : "validation");
+  const Segments s = &t == &c.qs ? R.segments : detect_segments(t.record);
+  const double hz = std::min(10.0, sampling_rate(t.record));
+  cmp.quasi_static_paper = predict_quasi_static(*m.paper, c.campaign.specimen, t, s, hz);
+  cmp.error_paper = cmp.quasi_static_paper->rms_error;
+  if (R.refit) {
+    cmp.quasi_static_refit = predict_quasi_static(*m.refit, c.campaign.specimen, t, s, hz);
+    cmp.error_refit = cmp.quasi_static_refit->rms_error;
+  }
+  return cmp;
+}
+
+/// One dynamic test of the campaign: |E*| error of the paper's material and of the refit.
+TestComparison compare_dynamic(const CalibrationTests& c, const DynamicTest& t, const ComparedModels& m,
+                               const FitResult& R) {
+  TestComparison cmp;
+  cmp.name = t.name;
+  cmp.kind = "dynamic";
+  cmp.use = t.use == TestUse::calibration ? "calibration" : "validation";
+  cmp.dynamic_paper = predict_dynamic(*m.paper, m.paper_base, t, c.sched());
+  cmp.error_paper = cmp.dynamic_paper->magnitude_rms;
+  if (R.refit) {
+    cmp.dynamic_refit = predict_dynamic(*m.refit, m.refit_base, t, c.sched());
+    cmp.error_refit = cmp.dynamic_refit->magnitude_rms;
+  }
+  return cmp;
+}
+
+/// Report: every test of the campaign (calibration and validation), paper's material vs refit.
+void compare_every_test(const CalibrationTests& c, FitResult& R, std::ostream& log) {
   const ViscoHyperfoam& refit_material = R.refit ? R.refit->material : R.paper_material;
-  const auto refit_model = build_model(refit_material);
-  const material::Hyperfoam refit_base(refit_material.terms);
-  for (const auto& t : campaign.quasi_static) {
-    TestComparison c;
-    c.name = t.name;
-    c.kind = "quasi_static";
-    c.use = t.use == TestUse::calibration ? "calibration" : (options.refit && options.refit_all_quasi_static ? "refit target" : "validation");
-    const Segments s = &t == qs ? R.segments : detect_segments(t.record);
-    const double hz = std::min(10.0, sampling_rate(t.record));
-    c.quasi_static_paper = predict_quasi_static(*paper_model, campaign.specimen, t, s, hz);
-    c.error_paper = c.quasi_static_paper->rms_error;
-    if (R.refit) {
-      c.quasi_static_refit = predict_quasi_static(*refit_model, campaign.specimen, t, s, hz);
-      c.error_refit = c.quasi_static_refit->rms_error;
-    }
-    R.comparisons.push_back(std::move(c));
-  }
-  for (const auto& t : campaign.dynamic) {
-    TestComparison c;
-    c.name = t.name;
-    c.kind = "dynamic";
-    c.use = t.use == TestUse::calibration ? "calibration" : "validation";
-    c.dynamic_paper = predict_dynamic(*paper_model, paper_base, t, sched);
-    c.error_paper = c.dynamic_paper->magnitude_rms;
-    if (R.refit) {
-      c.dynamic_refit = predict_dynamic(*refit_model, refit_base, t, sched);
-      c.error_refit = c.dynamic_refit->magnitude_rms;
-    }
-    R.comparisons.push_back(std::move(c));
-  }
-  for (const auto& c : R.comparisons)
-    log << "fit: " << c.use << " " << c.name << ": error paper " << percent(c.error_paper)
-        << (R.refit ? ", refit " + percent(c.error_refit) : std::string()) << "\n";
+  const ComparedModels m{build_model(R.paper_material), build_model(refit_material),
+                         material::Hyperfoam(R.hyperfoam.terms), material::Hyperfoam(refit_material.terms)};
+  for (const auto& t : c.campaign.quasi_static) R.comparisons.push_back(compare_quasi_static(c, t, m, R));
+  for (const auto& t : c.campaign.dynamic) R.comparisons.push_back(compare_dynamic(c, t, m, R));
+  for (const auto& cmp : R.comparisons)
+    log << "fit: " << cmp.use << " " << cmp.name << ": error paper " << percent(cmp.error_paper)
+        << (R.refit ? ", refit " + percent(cmp.error_refit) : std::string()) << "\n";
+}
+
+}  // namespace
+
+FitResult fit_pipeline(const Campaign& campaign, const FitOptions& options, std::ostream& log) {
+  FitResult R;
+  R.options = options;
+  R.run_normalisation = options.normalisation;
+  Stopwatch clock(R.timings);
+  const CalibrationTests c = calibration_tests(campaign, options);
+  R.quasi_static_name = c.qs.name;
+  R.dynamic_name = c.dyn.name;
+  segment_and_pair(c, R, log);
+  clock.lap("segments and pairs");
+  hereditary_step(c, R, log);
+  clock.lap("hereditary fit");
+  decomposition_step(c, R, log);
+  clock.lap("decomposition");
+  hyperfoam_step(c, R, log);
+  clock.lap("hyperfoam fit");
+  prony_step(c, R, log);
+  clock.lap("Prony fit");
+  prony_conversion_step(c, R, log);
+  clock.lap("Prony conversion");
+  if (options.refit) refit_step(c, R, log);
+  choose_default(options, R);
+  clock.lap("refit");
+  compare_every_test(c, R, log);
   clock.lap("comparison on every test");
   return R;
 }

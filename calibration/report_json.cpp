@@ -54,6 +54,65 @@ json curve_json(const ProtocolCurve& c) {
           {"pair_strain", c.pairs.strain}, {"delta_sigma_kPa", kpa(c.delta_sigma)}};
 }
 
+/// Step 6: the Prony series and its fit at every frequency.
+json prony_fit_json(const PronyFit& prony) {
+  json res = json::array();
+  for (const auto& r : prony.residuals)
+    res.push_back({{"frequency_Hz", r.frequency}, {"storage_kPa", r.storage * 1e3}, {"storage_model_kPa", r.storage_model * 1e3},
+                   {"loss_kPa", r.loss * 1e3}, {"loss_model_kPa", r.loss_model * 1e3},
+                   {"magnitude_kPa", r.magnitude * 1e3}, {"magnitude_model_kPa", r.magnitude_model * 1e3},
+                   {"phase_deg", r.phase}, {"phase_model_deg", r.phase_model}});
+  return {{"E_inf_kPa", prony.E_inf * 1e3}, {"E_kPa", kpa(prony.E)}, {"tau_s", prony.tau},
+          {"chi2", prony.chi2}, {"bounds_active", prony.bounds_active}, {"residuals", res}};
+}
+
+/// Step 7: relative moduli in both normalisations and the solver's error with each.
+json conversion_json(const FitResult& R) {
+  const PronyConversion& c = R.conversion;
+  auto gs = [](const std::vector<material::PronyTerm>& p) {
+    json a = json::array();
+    for (const auto& t : p) a.push_back(t.g);
+    return a;
+  };
+  return {
+      {"E_inf_kPa", c.E_inf * 1e3}, {"E_0_kPa", c.E_0 * 1e3}, {"preload_strain", c.preload.preload},
+      {"K_hf_kPa", c.preload.K_hf * 1e3}, {"K_v_kPa", c.preload.K_v * 1e3}, {"S11_kPa", c.preload.S11 * 1e3},
+      {"preload_stress_kPa", c.preload.stress * 1e3},
+      {"paper", {{"g", gs(c.paper)}, {"a_long_term", c.a_paper},
+                 {"dynamic", dynamic_json(R.dynamic_normalisation_paper)},
+                 {"quasi_static", quasi_static_json(R.quasi_static_normalisation_paper)}}},
+      {"tangent", {{"g", gs(c.tangent)}, {"a_long_term", c.a_tangent},
+                   {"dynamic", dynamic_json(R.dynamic_normalisation_tangent)},
+                   {"quasi_static", quasi_static_json(R.quasi_static_normalisation_tangent)}}},
+      {"chosen", to_string(R.run_normalisation)}};
+}
+
+/// Step 8: the consistency refit.
+json refit_json(const RefitResult& f) {
+  return {{"material", material_json(f.material)}, {"converged", f.converged}, {"stable", f.stable},
+          {"improved", f.improved}, {"accepted", f.accepted()}, {"iterations", f.iterations},
+          {"starts", f.starts}, {"model_evaluations", f.evaluations}, {"seconds", f.seconds},
+          {"quasi_static_rms_start", f.quasi_static_rms_start}, {"quasi_static_rms", f.quasi_static_rms},
+          {"dynamic_rms_start", f.dynamic_rms_start}, {"dynamic_rms", f.dynamic_rms},
+          {"cost_start", f.cost_start}, {"cost", f.cost}, {"stability", f.stability}, {"ceres", f.report}};
+}
+
+/// Every test of the campaign, paper's material vs refit.
+json tests_json(const FitResult& R) {
+  json tests = json::array();
+  for (const auto& t : R.comparisons) {
+    json e{{"name", t.name}, {"kind", t.kind}, {"use", t.use}, {"error_paper", t.error_paper}};
+    if (R.refit) e["error_refit"] = t.error_refit;
+    e["error_measure"] = t.kind == "quasi_static" ? "RMS(model - measured)/peak stress" : "RMS of |E*| relative error";
+    if (t.quasi_static_paper) e["paper"] = quasi_static_json(*t.quasi_static_paper);
+    if (t.quasi_static_refit) e["refit"] = quasi_static_json(*t.quasi_static_refit);
+    if (t.dynamic_paper) e["paper"] = dynamic_json(*t.dynamic_paper);
+    if (t.dynamic_refit) e["refit"] = dynamic_json(*t.dynamic_refit);
+    tests.push_back(e);
+  }
+  return tests;
+}
+
 }  // namespace
 
 nlohmann::json report_json(const FitResult& R, const Campaign& campaign) {
@@ -88,56 +147,14 @@ nlohmann::json report_json(const FitResult& R, const Campaign& campaign) {
                     {"stable", R.hyperfoam.stable}, {"stability", R.hyperfoam.stability},
                     {"starts", R.hyperfoam.starts}, {"rejected_unstable", R.hyperfoam.rejected_unstable},
                     {"warnings", R.hyperfoam.warnings}};
-  json res = json::array();
-  for (const auto& r : R.prony.residuals)
-    res.push_back({{"frequency_Hz", r.frequency}, {"storage_kPa", r.storage * 1e3}, {"storage_model_kPa", r.storage_model * 1e3},
-                   {"loss_kPa", r.loss * 1e3}, {"loss_model_kPa", r.loss_model * 1e3},
-                   {"magnitude_kPa", r.magnitude * 1e3}, {"magnitude_model_kPa", r.magnitude_model * 1e3},
-                   {"phase_deg", r.phase}, {"phase_model_deg", r.phase_model}});
-  j["prony"] = {{"E_inf_kPa", R.prony.E_inf * 1e3}, {"E_kPa", kpa(R.prony.E)}, {"tau_s", R.prony.tau},
-                {"chi2", R.prony.chi2}, {"bounds_active", R.prony.bounds_active}, {"residuals", res}};
-  const PronyConversion& c = R.conversion;
-  auto gs = [](const std::vector<material::PronyTerm>& p) {
-    json a = json::array();
-    for (const auto& t : p) a.push_back(t.g);
-    return a;
-  };
-  j["conversion"] = {
-      {"E_inf_kPa", c.E_inf * 1e3}, {"E_0_kPa", c.E_0 * 1e3}, {"preload_strain", c.preload.preload},
-      {"K_hf_kPa", c.preload.K_hf * 1e3}, {"K_v_kPa", c.preload.K_v * 1e3}, {"S11_kPa", c.preload.S11 * 1e3},
-      {"preload_stress_kPa", c.preload.stress * 1e3},
-      {"paper", {{"g", gs(c.paper)}, {"a_long_term", c.a_paper},
-                 {"dynamic", dynamic_json(R.dynamic_normalisation_paper)},
-                 {"quasi_static", quasi_static_json(R.quasi_static_normalisation_paper)}}},
-      {"tangent", {{"g", gs(c.tangent)}, {"a_long_term", c.a_tangent},
-                   {"dynamic", dynamic_json(R.dynamic_normalisation_tangent)},
-                   {"quasi_static", quasi_static_json(R.quasi_static_normalisation_tangent)}}},
-      {"chosen", to_string(R.run_normalisation)}};
+  j["prony"] = prony_fit_json(R.prony);
+  j["conversion"] = conversion_json(R);
   j["material_paper"] = material_json(R.paper_material);
-  if (R.refit) {
-    const RefitResult& f = *R.refit;
-    j["refit"] = {{"material", material_json(f.material)}, {"converged", f.converged}, {"stable", f.stable},
-                  {"improved", f.improved}, {"accepted", f.accepted()}, {"iterations", f.iterations},
-                  {"starts", f.starts}, {"model_evaluations", f.evaluations}, {"seconds", f.seconds},
-                  {"quasi_static_rms_start", f.quasi_static_rms_start}, {"quasi_static_rms", f.quasi_static_rms},
-                  {"dynamic_rms_start", f.dynamic_rms_start}, {"dynamic_rms", f.dynamic_rms},
-                  {"cost_start", f.cost_start}, {"cost", f.cost}, {"stability", f.stability}, {"ceres", f.report}};
-  }
+  if (R.refit) j["refit"] = refit_json(*R.refit);
   j["warnings"] = R.warnings;
   j["material_problems"] = {{"paper", R.paper_problem}, {"refit", R.refit_problem}};
   j["default"] = {{"material", R.default_choice == DefaultMaterial::paper ? "paper" : "refit"}, {"reason", R.default_reason}};
-  json tests = json::array();
-  for (const auto& t : R.comparisons) {
-    json e{{"name", t.name}, {"kind", t.kind}, {"use", t.use}, {"error_paper", t.error_paper}};
-    if (R.refit) e["error_refit"] = t.error_refit;
-    e["error_measure"] = t.kind == "quasi_static" ? "RMS(model - measured)/peak stress" : "RMS of |E*| relative error";
-    if (t.quasi_static_paper) e["paper"] = quasi_static_json(*t.quasi_static_paper);
-    if (t.quasi_static_refit) e["refit"] = quasi_static_json(*t.quasi_static_refit);
-    if (t.dynamic_paper) e["paper"] = dynamic_json(*t.dynamic_paper);
-    if (t.dynamic_refit) e["refit"] = dynamic_json(*t.dynamic_refit);
-    tests.push_back(e);
-  }
-  j["tests"] = tests;
+  j["tests"] = tests_json(R);
   json tm = json::object();
   for (const auto& [stage, sec] : R.timings) tm[stage] = sec;
   j["timings_s"] = tm;

@@ -37,23 +37,27 @@ void prony_table(std::ostringstream& o, const PronyConversion& c, const ViscoHyp
   }
 }
 
-}  // namespace
-
-std::string report_markdown(const FitResult& R, const Campaign& campaign, const std::vector<PlotFiles>& plots) {
-  std::ostringstream o;
+/// Title, campaign and the calibration tests.
+void header_section(std::ostringstream& o, const FitResult& R, const Campaign& campaign) {
   o << "# cushion fit report\n\n";
   o << "Campaign: `" << campaign.manifest.string() << "`";
   if (!campaign.description.empty()) o << " - " << campaign.description;
   o << "\n\nCalibration tests: quasi-static `" << R.quasi_static_name << "`, dynamic `" << R.dynamic_name
     << "`. Units: strains and stresses nominal, compression positive; stresses in kPa.\n\n";
+}
 
+/// Steps 1-2: segments of the quasi-static record and the loading/unloading pairs.
+void segments_section(std::ostringstream& o, const FitResult& R) {
   o << "## 1-2. Segments and difference stress\n\n";
   o << "Peak strain " << pct(R.segments.peak_strain) << ", peak stress " << num(R.segments.peak_stress * 1e3) << " kPa, hold "
     << num(R.segments.hold_duration) << " s, " << R.pairs.t1.size() << " loading/unloading pairs at 1 s intervals"
     << (R.segments.lift_off ? ", unloading truncated at lift-off (strain " + num(R.segments.lift_off_strain) + ")" : "")
     << ".\n";
   for (const auto& w : R.segments.warnings) o << "\n- warning: " << w << "\n";
+}
 
+/// Step 3: hereditary modes, difference-stress RMSE, Table 2 on the paper's protocol.
+void hereditary_section(std::ostringstream& o, const FitResult& R) {
   o << "\n## 3. Hereditary integral (paper eq. 6, two complex modes)\n\n";
   o << "| mode | Re alpha [kPa] | Im alpha [kPa] | Re beta [1/s] | Im beta [1/s] |\n|---|---|---|---|---|\n";
   for (std::size_t i = 0; i < R.hereditary.modes.size(); ++i) {
@@ -69,7 +73,10 @@ std::string report_markdown(const FitResult& R, const Campaign& campaign, const 
   o << "The paper's Table 2 parameters on the paper's protocol (80 mm, 120 mm/min to 75 %, 2 s hold) give a viscous "
        "stress of at most "
     << num(t2_sv * 1e3) << " kPa and a difference stress of at most " << num(t2_ds * 1e3) << " kPa.\n";
+}
 
+/// Steps 4-5: decomposition sigma_e = sigma - sigma_v and the hyperfoam fitted to sigma_e.
+void elastic_sections(std::ostringstream& o, const FitResult& R) {
   o << "\n## 4. Decomposition sigma_e = sigma - sigma_v\n\n";
   o << "Loading and unloading elastic stress agree to " << pct(R.decomposition.branch_mismatch)
     << " of the peak stress (RMS over strain " << num(R.decomposition.paired_strain_min) << " .. "
@@ -80,7 +87,10 @@ std::string report_markdown(const FitResult& R, const Campaign& campaign, const 
   o << "\nRMS error " << pct(R.hyperfoam.rms_error) << ", max " << pct(R.hyperfoam.max_error) << " of the peak; "
     << (R.hyperfoam.stable ? "Drucker-stable over the tested range" : "NOT stable over the tested range") << ".\n\n```\n"
     << R.hyperfoam.stability << "\n```\n";
+}
 
+/// Step 6: Prony series and its fit at every frequency.
+void prony_section(std::ostringstream& o, const FitResult& R) {
   const PronyConversion& c = R.conversion;
   o << "\n## 6. Prony series (normalised chi-square " << num(R.prony.chi2) << ")\n\n";
   o << "E_inf = " << num(c.E_inf * 1e3) << " kPa, E_0 = E_inf + sum E_i = " << num(c.E_0 * 1e3) << " kPa.\n\n";
@@ -88,7 +98,11 @@ std::string report_markdown(const FitResult& R, const Campaign& campaign, const 
   for (const auto& r : R.prony.residuals)
     o << "| " << num(r.frequency) << " | " << num(r.storage * 1e3) << " | " << num(r.storage_model * 1e3) << " | "
       << num(r.loss * 1e3) << " | " << num(r.loss_model * 1e3) << " | " << num(r.phase) << " | " << num(r.phase_model) << " |\n";
+}
 
+/// Step 7: relative moduli in both normalisations and the solver's error with each.
+void conversion_section(std::ostringstream& o, const FitResult& R) {
+  const PronyConversion& c = R.conversion;
   o << "\n## 7. Relative moduli for the solver\n\n";
   o << "Hyperfoam at the " << pct(c.preload.preload) << " preload: long-term nominal tangent K_hf = " << num(c.preload.K_hf * 1e3)
     << " kPa (measured E_inf = " << num(c.E_inf * 1e3) << " kPa); the part the Prony series scales is K_v = l^2 C = "
@@ -104,7 +118,10 @@ std::string report_markdown(const FitResult& R, const Campaign& campaign, const 
     << "): (b) makes the solver's dynamic modulus at the preload equal to the measured one (up to K_hf - E_inf in the "
        "storage modulus), (a) scales the viscous part by K_v / E_inf = "
     << num(c.preload.K_v / c.E_inf) << ".\n";
+}
 
+/// Step 8: the consistency refit.
+void refit_section(std::ostringstream& o, const FitResult& R) {
   o << "\n## 8. Consistency refit\n\n";
   if (R.refit) {
     const RefitResult& f = *R.refit;
@@ -118,6 +135,10 @@ std::string report_markdown(const FitResult& R, const Campaign& campaign, const 
   } else {
     o << "Not run (--no-refit).\n";
   }
+}
+
+/// Every test of the campaign, paper's material vs refit, and the default material.
+void comparison_section(std::ostringstream& o, const FitResult& R) {
   o << "\n## Every test: paper's method vs refit\n\n";
   o << "| test | use | error measure | paper | refit |\n|---|---|---|---|---|\n";
   for (const auto& t : R.comparisons)
@@ -126,7 +147,10 @@ std::string report_markdown(const FitResult& R, const Campaign& campaign, const 
       << " | " << (R.refit ? pct(t.error_refit) : std::string("-")) << " |\n";
   o << "\nDefault material (`material.json`): **" << (R.default_choice == DefaultMaterial::paper ? "paper" : "refit")
     << "** - " << R.default_reason << ".\n";
+}
 
+/// Plots (embedded when drawn, else the script and why) and the stage timings.
+void plots_and_timings(std::ostringstream& o, const FitResult& R, const std::vector<PlotFiles>& plots) {
   o << "\n## Plots\n\n";
   for (const auto& p : plots) {
     if (p.drawn) o << "![" << p.png.stem().string() << "](" << p.png.filename().string() << ")\n\n";
@@ -134,6 +158,21 @@ std::string report_markdown(const FitResult& R, const Campaign& campaign, const 
   }
   o << "\n## Timings\n\n| stage | s |\n|---|---|\n";
   for (const auto& [stage, sec] : R.timings) o << "| " << stage << " | " << num(sec, 3) << " |\n";
+}
+
+}  // namespace
+
+std::string report_markdown(const FitResult& R, const Campaign& campaign, const std::vector<PlotFiles>& plots) {
+  std::ostringstream o;
+  header_section(o, R, campaign);
+  segments_section(o, R);
+  hereditary_section(o, R);
+  elastic_sections(o, R);
+  prony_section(o, R);
+  conversion_section(o, R);
+  refit_section(o, R);
+  comparison_section(o, R);
+  plots_and_timings(o, R, plots);
   return o.str();
 }
 
