@@ -55,6 +55,7 @@ const std::vector<double>& CsvTable::col(const std::string& column) const {
 CsvTable read_csv(const std::filesystem::path& file) {
   CsvTable table;
   table.source = file.string();
+  io::require_readable_file(file, "CSV file");
   std::ifstream in(file);
   if (!in) throw InputError(table.source + ": cannot open file");
 
@@ -128,8 +129,19 @@ std::size_t require_columns(const CsvTable& table, const std::vector<std::vector
   for (const auto& column : table.columns)
     if (std::find(known.begin(), known.end(), column) == known.end())
       unknown.push_back("'" + column + "'" + io::did_you_mean(column, known));
-  throw InputError(table.source + ": expected the columns " + sets +
-                   (unknown.empty() ? std::string{} : "; unknown column(s) " + io::join(unknown, ", ")));
+  // Name what is missing from the accepted set the table comes closest to.
+  std::size_t nearest = 0, most_present = 0;
+  for (std::size_t s = 0; s < accepted.size(); ++s) {
+    const auto present = static_cast<std::size_t>(
+        std::count_if(accepted[s].begin(), accepted[s].end(), [&](const std::string& c) { return table.has(c); }));
+    if (present > most_present) nearest = s, most_present = present;
+  }
+  std::vector<std::string> missing;
+  if (!accepted.empty())
+    for (const auto& c : accepted[nearest])
+      if (!table.has(c)) missing.push_back("'" + c + "'");
+  throw InputError(table.source + ": missing column(s) " + io::join(missing, ", ") + " (expected the columns " + sets +
+                   ")" + (unknown.empty() ? std::string{} : "; unknown column(s) " + io::join(unknown, ", ")));
 }
 
 void write_csv(const std::filesystem::path& file, const std::vector<std::string>& columns,

@@ -92,6 +92,7 @@ nlohmann::json parse_json(const std::string& text, const std::string& source) {
 }
 
 std::string read_text_file(const std::string& file) {
+  require_readable_file(file, "JSON file");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(file + ": cannot open file");
   std::ostringstream text;

@@ -57,6 +57,16 @@ std::string did_you_mean(const std::string& word, const std::vector<std::string>
   return best.empty() ? std::string{} : " (did you mean '" + best + "'?)";
 }
 
+void require_readable_file(const std::filesystem::path& file, const std::string& what) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status status = fs::status(file, ec);
+  if (!fs::exists(status)) throw InputError(file.string() + ": no such file");
+  if (fs::is_directory(status)) throw InputError(file.string() + ": is a folder, not a " + what);
+  std::ifstream probe(file, std::ios::binary);
+  if (!probe) throw InputError(file.string() + ": cannot read (permission?)");
+}
+
 void write_file_atomically(const std::filesystem::path& file, const std::string& content) {
   namespace fs = std::filesystem;
   std::error_code ec;

@@ -13,6 +13,10 @@ std::string closest_name(const std::string& word, const std::vector<std::string>
 /// " (did you mean 'x'?)" for the closest known name, or "" when there is none.
 std::string did_you_mean(const std::string& word, const std::vector<std::string>& known);
 
+/// Checks that `file` is an existing, readable regular file; throws InputError "<file>: no such file",
+/// "<file>: is a folder, not a <what>" or "<file>: cannot read (permission?)" otherwise.
+void require_readable_file(const std::filesystem::path& file, const std::string& what);
+
 /// Writes `content` to `file` atomically: into a temporary file in the same folder, then renamed
 /// over `file`, so a reader never sees a half-written file. Creates missing parent folders.
 /// Throws InputError naming the file when it cannot be written.

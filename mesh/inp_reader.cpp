@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "io/input_error.hpp"
+#include "io/text_support.hpp"
 #include "mesh/text.hpp"
 
 namespace cushion::mesh {
@@ -375,6 +376,7 @@ Mesh parse_inp(const std::string& text, const std::string& name, std::vector<std
 }
 
 Mesh read_inp(const std::string& path, std::vector<std::string>* notes) {
+  io::require_readable_file(path, ".inp file");
   std::ifstream file(path);
   if (!file) throw InputError(path + ": cannot open .inp file");
   std::stringstream content;

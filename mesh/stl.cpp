@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "io/input_error.hpp"
+#include "io/text_support.hpp"
 
 namespace cushion::mesh {
 namespace {
@@ -87,6 +88,7 @@ std::vector<Vec3> read_ascii(std::istream& in, const std::string& path) {
 }  // namespace
 
 TriangleSurface read_stl(const std::string& path) {
+  io::require_readable_file(path, "STL file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open STL file");
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

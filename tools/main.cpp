@@ -25,7 +25,8 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version exit 0; every argument error exits 2 like any other input error.
+    return app.exit(e) == 0 ? 0 : 2;
   } catch (const cushion::InputError& e) {
     std::cerr << "cushion: input error: " << e.what() << "\n";
     return 2;

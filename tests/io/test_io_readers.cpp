@@ -86,7 +86,13 @@ TEST(Csv, MalformedInputNamesFileLineAndColumn) {
     cushion::read_csv(scratch_dir() / "missing.csv");
     FAIL();
   } catch (const cushion::InputError& e) {
-    expect_contains(e.what(), {"missing.csv", "cannot open"});
+    expect_contains(e.what(), {"missing.csv", "no such file"});
+  }
+  try {  // a folder where a file belongs
+    cushion::read_csv(scratch_dir());
+    FAIL();
+  } catch (const cushion::InputError& e) {
+    expect_contains(e.what(), {"is a folder, not a CSV file"});
   }
 }
 
@@ -98,7 +104,8 @@ TEST(Csv, RequireColumnsSuggestsTheClosestName) {
     cushion::require_columns(t, accepted);
     FAIL();
   } catch (const cushion::InputError& e) {
-    expect_contains(e.what(), {"cols.csv", "'displacment_mm'", "did you mean 'displacement_mm'", "{time_s, strain, stress_kPa}"});
+    expect_contains(e.what(), {"cols.csv", "missing column(s) 'displacement_mm'", "'displacment_mm'",
+                               "did you mean 'displacement_mm'", "{time_s, strain, stress_kPa}"});
   }
   try {
     t.col("forces_N");

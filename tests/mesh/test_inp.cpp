@@ -238,13 +238,18 @@ TEST(InpReader, FuzzFindingsAreInputErrors) {
 TEST(InpReader, GenerateAtTheEndsOfTheIntRange) {
   const std::string deck = R"(*NODE
 -2147483647, 0, 0, 0
+0, 2, 0, 0
+2147483645, 3, 0, 0
 2147483647, 1, 0, 0
 *NSET, NSET=ENDS, GENERATE
 -2147483647, 2147483647, 2147483647
+*NSET, NSET=TOP, GENERATE
+2147483645, 2147483647, 2
 *NSET, NSET=LAST, GENERATE
 2147483647, 2147483647
 )";
   const cm::Mesh mesh = cm::parse_inp(deck, "ends.inp");
-  EXPECT_EQ(mesh.node_sets.at("ENDS").size(), 2u);
+  EXPECT_EQ(mesh.node_sets.at("ENDS").size(), 3u);  // -2147483647, 0, 2147483647
+  EXPECT_EQ(mesh.node_sets.at("TOP").size(), 2u);
   EXPECT_EQ(mesh.node_sets.at("LAST").size(), 1u);
 }

@@ -57,7 +57,7 @@ TEST(CliPoint, BadArgumentsFailWithOneLineAndNoOutput) {
       {"point -m " + material + " --protocol " + quoted(bad_protocol) + " -o " + out, "segments[0].ramp.duraton_s"},
       {"point -m " + material + " --hold 2", "--output"},
       {"point --hold 2 -o " + out, "--material"},
-      {"point -m " + quoted(dir / "missing.json") + " --hold 2 -o " + out, "missing.json: cannot open"},
+      {"point -m " + quoted(dir / "missing.json") + " --hold 2 -o " + out, "missing.json: no such file"},
       {"point -m " + quoted(bad_material) + " --hold 2 -o " + out, "hyperfoam.terms[0].alpha: must be non-zero"},
   };
   for (const Case& c : cases) {
