@@ -176,10 +176,9 @@ void DynamicStep::run(AnalysisContext& ctx) {
   DynamicStepper stepper(ctx, spec_, boundary, newmark, assembler, std::move(k), f_int_n, hht_force, energy_file);
   energy_file.write_row(t0, stepper.energy().row());
   ctx.log << "step '" << spec_.name << "' (dynamic, Newmark gamma = " << dyn.gamma << ", beta = " << dyn.beta
-          << ", HHT alpha = " << dyn.hht_alpha
-          << ", Rayleigh alpha = " << dyn.damping.rayleigh_alpha << " 1/s, beta = " << dyn.damping.rayleigh_beta
-          << " s, " << period
-          << " s, " << dofs.num_free() << " free DOFs, " << (spec_.increment.fixed ? "fixed" : "automatic")
+          << ", HHT alpha = " << dyn.hht_alpha << ", Rayleigh alpha = " << dyn.damping.rayleigh_alpha
+          << " 1/s, beta = " << dyn.damping.rayleigh_beta << " s, " << period << " s, " << dofs.num_free()
+          << " free DOFs, " << (spec_.increment.fixed ? "fixed" : "automatic")
           << " increments) from t = " << t0 << " s, start kinetic energy " << stepper.energy().kinetic << " mJ\n";
 
   const IncrementControl control =

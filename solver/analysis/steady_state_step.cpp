@@ -177,8 +177,7 @@ void SteadyStateStep::run(AnalysisContext& ctx) {
   auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   std::unique_ptr<LinearisedSystem> linearised;
   try {
-    auto points = base_point_states(assembler, ctx.state, ctx.u,
-                                    s.base_stress);
+    auto points = base_point_states(assembler, ctx.state, ctx.u, s.base_stress);
     linearised = std::make_unique<LinearisedSystem>(ctx.mesh, assembler.sections(), std::move(points), ctx.u);
   } catch (const std::runtime_error& e) {
     throw AnalysisError("step '" + spec_.name + "': cannot linearise the base state: " + e.what());
@@ -274,9 +273,9 @@ void SteadyStateStep::run(AnalysisContext& ctx) {
                 "E = (F / %.6g mm^2) / (U / %.6g mm); damping alpha = %.6g 1/s, beta = %.6g s, structural = %.6g",
                 spec_.name.c_str(), ctx.time, s.base_stress == BaseStress::relaxed ? "relaxed" : "as-left",
                 excited_name.c_str(), "xyz"[c],
-                s.from_acceleration ? (s.reading == AccelerationReading::peak_to_peak ? "acceleration read as peak-to-peak"
-                                                                                      : "acceleration read as peak")
-                                    : "displacement amplitude",
+                !s.from_acceleration                              ? "displacement amplitude"
+                : s.reading == AccelerationReading::peak_to_peak ? "acceleration read as peak-to-peak"
+                                                                  : "acceleration read as peak",
                 measured_name.c_str(),
                 measure == Measure::indenter_driven ? "driven" : measure == Measure::indenter_free ? "free" : "held",
                 area, s.thickness, s.damping.rayleigh_alpha, s.damping.rayleigh_beta, s.damping.structural);
