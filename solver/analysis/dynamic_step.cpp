@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <optional>
 
-#include "io/input_error.hpp"
 #include "io/text_support.hpp"
 #include "solver/analysis/boundary.hpp"
 #include "solver/analysis/increment_loop.hpp"
@@ -124,10 +123,6 @@ void DynamicStep::run(AnalysisContext& ctx) {
   System& system = ctx.system(mask);
   const Assembler& assembler = *system.assembler;
   const DofMap& dofs = assembler.dofs();
-  for (const Section& section : assembler.sections())
-    if (!(section.density > 0.0))
-      throw InputError(ctx.spec.file.string() + ": " + dyn.key + ": a dynamic step needs the mass density of material \"" +
-                       section.name + "\" (give density_kg_m3 in " + ctx.spec.material_file.string() + ")");
   const double t0 = ctx.time, period = spec_.period;
   const Eigen::Index n = ctx.u.size();
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
@@ -137,13 +132,12 @@ void DynamicStep::run(AnalysisContext& ctx) {
   try {
     lin = std::make_unique<dynamics::LinearisedSystem>(
         ctx.mesh, assembler.sections(),
-        dynamics::base_point_states(assembler, ctx.state, ctx.u, dynamics::BaseStress::relaxed), ctx.u);
+        dynamics::base_point_states(assembler, ctx.state, ctx.u, BaseStress::relaxed), ctx.u);
   } catch (const std::runtime_error& e) {
     throw AnalysisError("step '" + spec_.name + "': cannot build the mass and damping matrices: " + e.what());
   }
-  SparseMatrix C = dyn.rayleigh_alpha * lin->mass();
-  if (dyn.rayleigh_beta > 0.0) C += dyn.rayleigh_beta * lin->long_term_stiffness();
-  dynamics::NewmarkIntegrator newmark(assembler, lin->mass(), C, {dyn.gamma, dyn.beta, dyn.alpha});
+  const SparseMatrix C = dynamics::damping_matrix(dyn.damping, lin->mass(), lin->long_term_stiffness());
+  dynamics::NewmarkIntegrator newmark(assembler, lin->mass(), C, {dyn.gamma, dyn.beta, dyn.hht_alpha});
   lin.reset();
 
   std::vector<std::shared_ptr<ResidualContributor>> contributors;
@@ -182,9 +176,9 @@ void DynamicStep::run(AnalysisContext& ctx) {
   DynamicStepper stepper(ctx, spec_, boundary, newmark, assembler, std::move(k), f_int_n, hht_force, energy_file);
   energy_file.write_row(t0, stepper.energy().row());
   ctx.log << "step '" << spec_.name << "' (dynamic, Newmark gamma = " << dyn.gamma << ", beta = " << dyn.beta
-          << ", HHT alpha = " << dyn.alpha
-          << ", Rayleigh alpha = " << dyn.rayleigh_alpha << " 1/s, beta = " << dyn.rayleigh_beta << " s, " << period
-          << " s, " << dofs.num_free() << " free DOFs, " << (spec_.increment.fixed ? "fixed" : "automatic")
+          << ", HHT alpha = " << dyn.hht_alpha << ", Rayleigh alpha = " << dyn.damping.rayleigh_alpha
+          << " 1/s, beta = " << dyn.damping.rayleigh_beta << " s, " << period << " s, " << dofs.num_free()
+          << " free DOFs, " << (spec_.increment.fixed ? "fixed" : "automatic")
           << " increments) from t = " << t0 << " s, start kinetic energy " << stepper.energy().kinetic << " mJ\n";
 
   const IncrementControl control =

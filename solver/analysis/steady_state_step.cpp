@@ -83,10 +83,6 @@ void SteadyStateStep::run(AnalysisContext& ctx) {
   // --- input checks, before anything is computed or written ---
   const System& system = ctx.system(ctx.constrained);
   const Assembler& assembler = *system.assembler;
-  for (const Section& section : assembler.sections())
-    if (!(section.density > 0.0))
-      throw InputError(where + ": the material \"" + section.name + "\" has no mass density (give density_kg_m3 in " +
-                       ctx.spec.material_file.string() + ")");
   const int c = s.excitation.dofs[0] ? 0 : s.excitation.dofs[1] ? 1 : 2;
   Vec3 e = Vec3::Zero();
   e(c) = 1.0;
@@ -175,15 +171,13 @@ void SteadyStateStep::run(AnalysisContext& ctx) {
   const std::vector<DofGroup> groups{{"indenter", measured}, {"base", measure_driven ? held_c : excitation.driven}};
   const double area = s.area_from_contact ? measured_indenter->lin.closed_area : s.area;
   const NominalGeometry geometry{area, s.thickness};
-  const Damping damping{s.alpha, s.beta, s.structural};
 
   // --- linearisation about the carried (committed) state ---
   const auto t0 = std::chrono::steady_clock::now();
   auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   std::unique_ptr<LinearisedSystem> linearised;
   try {
-    auto points = base_point_states(assembler, ctx.state, ctx.u,
-                                    s.relaxed_base ? BaseStress::relaxed : BaseStress::as_left);
+    auto points = base_point_states(assembler, ctx.state, ctx.u, s.base_stress);
     linearised = std::make_unique<LinearisedSystem>(ctx.mesh, assembler.sections(), std::move(points), ctx.u);
   } catch (const std::runtime_error& e) {
     throw AnalysisError("step '" + spec_.name + "': cannot linearise the base state: " + e.what());
@@ -191,8 +185,9 @@ void SteadyStateStep::run(AnalysisContext& ctx) {
   model.system = linearised.get();
   const double setup = seconds();
   ctx.log << "step '" << spec_.name << "' (steady_state, " << s.frequencies.size() << " frequencies, "
-          << (s.relaxed_base ? "relaxed" : "as-left") << " base stress, alpha = " << s.alpha
-          << " 1/s, beta = " << s.beta << " s, structural = " << s.structural << ") about t = " << ctx.time
+          << (s.base_stress == BaseStress::relaxed ? "relaxed" : "as-left") << " base stress, alpha = "
+          << s.damping.rayleigh_alpha << " 1/s, beta = " << s.damping.rayleigh_beta << " s, structural = "
+          << s.damping.structural << ") about t = " << ctx.time
           << " s; linearisation " << setup << " s\n";
   for (const Indenter& i : indenters)
     ctx.log << "  indenter '" << i.name << "': "
@@ -211,7 +206,7 @@ void SteadyStateStep::run(AnalysisContext& ctx) {
   SolveStats cost;  // summed over the threads
   auto work = [&](unsigned t) {
     try {
-      SteadyStateSolver solver(model, damping, excitation, groups, SolveMethod{s.iterative, s.gmres_tolerance});
+      SteadyStateSolver solver(model, s.damping, excitation, groups, SolveMethod{s.iterative, s.gmres_tolerance});
       for (std::size_t k = t; k < nf; k += threads) {
         {
           const std::lock_guard<std::mutex> lock(report);
@@ -219,9 +214,7 @@ void SteadyStateStep::run(AnalysisContext& ctx) {
         }
         const double f = s.frequencies[k];
         const double U = s.from_acceleration
-                             ? displacement_amplitude(s.acceleration,
-                                                      s.peak_to_peak ? AccelerationReading::peak_to_peak
-                                                                     : AccelerationReading::peak, f)
+                             ? displacement_amplitude(s.acceleration, s.reading, f)
                              : s.displacement;
         const auto f0 = std::chrono::steady_clock::now();
         const int iterations = solver.stats().iterations;
@@ -278,14 +271,14 @@ void SteadyStateStep::run(AnalysisContext& ctx) {
   std::snprintf(comment, sizeof comment,
                 "step %s: base state at t = %.6g s (%s stress); %s excited in %c, %s; measured %s (%s); "
                 "E = (F / %.6g mm^2) / (U / %.6g mm); damping alpha = %.6g 1/s, beta = %.6g s, structural = %.6g",
-                spec_.name.c_str(), ctx.time, s.relaxed_base ? "relaxed" : "as-left",
+                spec_.name.c_str(), ctx.time, s.base_stress == BaseStress::relaxed ? "relaxed" : "as-left",
                 excited_name.c_str(), "xyz"[c],
-                s.from_acceleration ? (s.peak_to_peak ? "acceleration read as peak-to-peak" : "acceleration read as peak")
-                                    : "displacement amplitude",
+                !s.from_acceleration                              ? "displacement amplitude"
+                : s.reading == AccelerationReading::peak_to_peak ? "acceleration read as peak-to-peak"
+                                                                  : "acceleration read as peak",
                 measured_name.c_str(),
                 measure == Measure::indenter_driven ? "driven" : measure == Measure::indenter_free ? "free" : "held",
-                area, s.thickness, s.alpha, s.beta,
-                s.structural);
+                area, s.thickness, s.damping.rayleigh_alpha, s.damping.rayleigh_beta, s.damping.structural);
   std::vector<std::string> comments{comment};
   if (!indenters.empty())
     comments.push_back("indenters: rigid, contact frozen at the base state (closed nodes keep a normal penalty "

@@ -1,5 +1,5 @@
 #pragma once
-/// The "steady_state" step of a case (keys: solver/dynamics/steady_state_spec.hpp): a frequency
+/// The "steady_state" step of a case (keys: solver/case/steady_state_spec.hpp): a frequency
 /// sweep of the model linearised about the committed end state of the previous step (solver/dynamics/
 /// steady_state.hpp for the equations). A linear perturbation: the carried state (u, material state,
 /// time) is left unchanged, so a later step continues from the base state.
@@ -25,9 +25,10 @@ class SteadyStateStep final : public Step {
  public:
   explicit SteadyStateStep(const StepSpec& spec) : spec_(spec) {}
   const StepSpec& spec() const override { return spec_; }
-  /// Throws InputError for a material without density, a missing/empty set, an unknown contact or
-  /// a named indenter without contact at the base state (before anything is written); AnalysisError if the base state cannot be linearised or a
-  /// frequency hits an undamped resonance (no sweep file is then written).
+  /// Throws InputError for a named indenter without contact at the base state (before anything is
+  /// written; input errors of the case, mesh and material are raised by load_case); AnalysisError if
+  /// the base state cannot be linearised or a frequency hits an undamped resonance (no sweep file is
+  /// then written).
   void run(AnalysisContext& ctx) override;
 
  private:

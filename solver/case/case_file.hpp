@@ -23,7 +23,8 @@ CaseSpec read_case_file(const std::filesystem::path& file);
 /// empty selection is an InputError) and checks that every set a step names exists.
 mesh::Mesh build_case_mesh(const CaseSpec& spec);
 
-/// Throws InputError naming the first step key that refers to a node set absent from `node_sets`.
+/// Throws InputError naming the first step key that refers to a node set absent from `node_sets`
+/// (boundary, history, contact and steady-state sets).
 void check_set_names(const CaseSpec& spec, const std::set<std::string>& node_sets);
 
 /// A case ready to run: spec, mesh with its node sets, material.
@@ -33,8 +34,14 @@ struct LoadedCase {
   material::MaterialDefinition material;
 };
 
+/// The checks that need the built mesh and material, run before the first step (nothing is written
+/// yet): the sets of steady-state steps are not empty and the measured set has a node driven or held
+/// in the excitation's dof; dynamic and steady-state steps have a material with a mass density.
+/// Throws InputError "<case>: <key.path>: <problem>".
+void check_loaded_case(const LoadedCase& loaded);
+
 /// read_case_file, then the material file (its errors are prefixed "<case>: material.file: "),
-/// then build_case_mesh.
+/// then build_case_mesh, then check_loaded_case.
 LoadedCase load_case(const std::filesystem::path& file);
 
 }  // namespace cushion::solver

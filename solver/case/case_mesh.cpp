@@ -43,21 +43,6 @@ mesh::Mesh build_raw_mesh(const CaseSpec& spec) {
 
 }  // namespace
 
-void check_set_names(const CaseSpec& spec, const std::set<std::string>& node_sets) {
-  const std::vector<std::string> known(node_sets.begin(), node_sets.end());
-  auto check = [&](const std::string& set, const std::string& key) {
-    if (!node_sets.count(set))
-      throw InputError(spec.file.string() + ": " + key + ": unknown node set \"" + set + "\"" +
-                       io::did_you_mean(set, known));
-  };
-  for (std::size_t s = 0; s < spec.steps.size(); ++s) {
-    for (const BoundarySpec& bc : spec.steps[s].boundary) check(bc.set, bc.key + ".set");
-    const auto& history = spec.steps[s].output.history;
-    for (std::size_t h = 0; h < history.size(); ++h)
-      check(history[h].set, "steps[" + std::to_string(s) + "].output.history[" + std::to_string(h) + "].set");
-  }
-}
-
 mesh::Mesh build_case_mesh(const CaseSpec& spec) {
   mesh::Mesh out = build_raw_mesh(spec);
   if (spec.mesh.formulation == HexFormulation::fbar &&
@@ -85,6 +70,7 @@ LoadedCase load_case(const std::filesystem::path& file) {
     throw InputError(file.string() + ": material.file: " + e.what());
   }
   loaded.mesh = build_case_mesh(loaded.spec);
+  check_loaded_case(loaded);
   return loaded;
 }
 

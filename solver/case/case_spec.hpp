@@ -31,7 +31,7 @@
 ///                                        "dynamic": implicit Newmark time stepping (inertia, damping)
 ///                                        with the keys of static/visco steps plus those below
 ///                                        "steady_state": frequency sweep about the previous step's end
-///                                        state; its keys: solver/dynamics/steady_state_spec.hpp
+///                                        state; its keys: solver/case/steady_state_spec.hpp
 ///     "long_term"?: false,               static only: fully relaxed (long-term) moduli (*STATIC, LONG TERM)
 ///     "time_period_s": T,                > 0 [s]
 ///     "increment"?: {"initial_s"? = T, "min_s"? = 1e-5 T, "max_s"? = T, "max_increments"? = 100,
@@ -40,7 +40,7 @@
 ///                                        (shortened only to end on amplitude corners / frame times),
 ///                                        no growth, no cut-back: a failed increment ends the run
 ///     "damping"?: {"rayleigh_alpha_1_s"? = 0, "rayleigh_beta_s"? = 0},   dynamic only, both >= 0:
-///                                        C = alpha M + beta K_R(0) (solver/analysis/dynamic_step.hpp)
+///                                        C = alpha M + beta K_R(0) (solver/case/damping.hpp)
 ///     "newmark"?: {"alpha"? = 0, "gamma"? = 0.5, "beta"? = 0.25}, dynamic only; alpha: HHT in [-1/3, 0]
 ///                                        (ABAQUS ALPHA; gamma, beta then default to (1 - 2 alpha)/2,
 ///                                        (1 - alpha)^2/4); gamma >= 1/2 and
@@ -54,7 +54,7 @@
 ///        {"set": "sym_x", "type": "symmetry_x" | "symmetry_y" | "symmetry_z"}   u_x (u_y, u_z) = 0
 ///        {"set": "base",  "type": "fixed"}                                     u = 0 (ENCASTRE)
 ///     ],
-///     "contact"?: [ rigid indenters in contact with node sets: see solver/contact/contact_spec.hpp ],
+///     "contact"?: [ rigid indenters in contact with node sets: see solver/case/contact_spec.hpp ],
 ///     "output"?: {"frames_every_s": dt  |  "frame_every_increments": n   (default: every increment),
 ///                 "history"?: [{"set": "top", "quantities": ["U3", "RF3", ...]}]}
 ///        A frame (.vtu) is written at the chosen interval and always at the end of the step.
@@ -73,7 +73,10 @@
 /// }
 /// Paths are relative to the folder of the case file. Unknown keys, missing keys, wrong types,
 /// wrong units (e.g. "time_period_ms"), non-finite numbers and references to undefined sets or
-/// amplitudes raise cushion::InputError "case.json: steps[1].boundary[0].amplitude: ...".
+/// amplitudes raise cushion::InputError "case.json: steps[1].boundary[0].amplitude: ..." when the
+/// file is parsed (solver/case/case_file.hpp). What needs the mesh and the material (sets of an .inp
+/// mesh, empty sets, a mass density for dynamic and steady_state steps) is checked right after they
+/// are built, before the first step runs (load_case).
 ///
 /// Example (1/8 of an 80 mm cube compressed 60 mm at 2 mm/s):
 /// {
@@ -95,8 +98,9 @@
 #include <vector>
 
 #include "mesh/structured_hex.hpp"
-#include "solver/contact/contact_spec.hpp"
-#include "solver/dynamics/steady_state_spec.hpp"
+#include "solver/case/contact_spec.hpp"
+#include "solver/case/damping.hpp"
+#include "solver/case/steady_state_spec.hpp"
 
 namespace cushion::solver {
 
@@ -180,11 +184,10 @@ struct IncrementSpec {
 
 /// Keys of a "dynamic" step (Newmark time integration, solver/analysis/dynamic_step.hpp).
 struct DynamicSpec {
-  double rayleigh_alpha = 0.0;  ///< mass-proportional damping [1/s]
-  double rayleigh_beta = 0.0;   ///< stiffness-proportional damping [s]
+  Damping damping;              ///< Rayleigh damping [1/s], [s] (structural 0)
   double gamma = 0.5;           ///< Newmark gamma [-]
   double beta = 0.25;           ///< Newmark beta [-]
-  double alpha = 0.0;           ///< HHT alpha [-] in [-1/3, 0] (solver/dynamics/newmark.hpp)
+  double hht_alpha = 0.0;       ///< HHT alpha [-] in [-1/3, 0] (solver/dynamics/newmark.hpp)
   std::string key;              ///< "steps[2]", for messages
 };
 
@@ -212,10 +215,10 @@ struct StepSpec {
   double period = 0.0;        ///< time period [s]
   IncrementSpec increment;
   std::vector<BoundarySpec> boundary;
-  std::vector<ContactSpec> contact;  ///< rigid indenters (solver/contact/contact_spec.hpp)
+  std::vector<ContactSpec> contact;  ///< rigid indenters (contact_spec.hpp)
   OutputSpec output;
-  dynamics::SteadyStateSpec steady_state;  ///< type steady_state only (solver/dynamics/steady_state_spec.hpp)
-  DynamicSpec dynamic;                     ///< type dynamic only
+  SteadyStateSpec steady_state;      ///< type steady_state only (steady_state_spec.hpp)
+  DynamicSpec dynamic;               ///< type dynamic only
 };
 
 struct SolverSpec {

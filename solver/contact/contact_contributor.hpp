@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "solver/analysis/step.hpp"
+#include "solver/case/contact_spec.hpp"
 #include "solver/contact/contact_set.hpp"
-#include "solver/contact/contact_spec.hpp"
 #include "solver/output/history_csv.hpp"
 
 namespace cushion::solver {

@@ -25,20 +25,11 @@
 
 #include "mesh/mesh.hpp"
 #include "solver/assembler.hpp"
+#include "solver/case/contact_spec.hpp"
 #include "solver/contact/rigid_surface.hpp"
 #include "solver/output/frame_data.hpp"
 
 namespace cushion::solver {
-
-/// Contact parameters (defaults: the SIT-BAR case).
-struct ContactParameters {
-  double penalty = 1.0;             ///< normal penalty stiffness per unit area [MPa/mm = N/mm^3]
-  double tangential_penalty = 0.0;  ///< tangential penalty per unit area [MPa/mm]; 0: 0.1 x penalty
-  double friction = 0.0;            ///< Coulomb coefficient mu [-] (0: frictionless)
-  double tolerance = 0.1;           ///< largest penetration accepted after augmentation [mm]
-  double smoothing = -1.0;          ///< width delta of the C1 contact law [mm]; < 0: tolerance / 2
-  int max_augmentations = 10;       ///< Uzawa updates per increment before giving up
-};
 
 /// Node status for output.
 enum class ContactStatus { open = 0, stick = 1, slip = 2 };

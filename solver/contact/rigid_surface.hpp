@@ -13,6 +13,7 @@
 
 #include "material/tensor.hpp"
 #include "mesh/stl.hpp"
+#include "solver/case/contact_spec.hpp"
 
 namespace cushion::solver {
 
@@ -48,28 +49,10 @@ std::shared_ptr<const RigidSurface> make_cylinder(const Vec3& point, const Vec3&
 std::shared_ptr<const RigidSurface> make_flat_punch(double cx, double cy, double bottom, double radius,
                                                     double r_edge);
 
-/// Parametric SIT-BAR surrogate (docs/physics.md 1.1; every number assumed unless noted).
-/// Default c = 120 mm (docs/physics.md proposes 60): with c = 60 the lobe flanks turn vertical exactly at
-/// 60 mm travel and the plate rim (at the equator) lands on the block, so the paper's 60 mm cannot
-/// be pressed smoothly. With c = 120 the plate stays 60 mm above the foam at full travel and the
-/// flank slope at 60 mm above the lowest point is bounded (dz/dx = (c/a) r / sqrt(1 - r^2) = 2.1
-/// laterally, 1.6 fore-aft, r = sqrt(3)/2).
-struct SitBarShape {
-  double lowest_z = 80.0;       ///< z of the lobes' lowest points at zero travel [mm]
-  double it_spacing = 120.0;    ///< distance between the two lobe centres along x [mm] (RESNA jig, sourced)
-  double a = 100.0;             ///< lobe semi-axis along x (lateral) [mm]
-  double b = 130.0;             ///< lobe semi-axis along y (fore-aft) [mm]
-  double c = 120.0;             ///< lobe semi-axis along z (vertical) [mm]
-  double blend = 20.0;          ///< soft-min blend width between lobes and plate [mm]
-  double plate_x = 360.0;       ///< plate footprint along x [mm]
-  double plate_y = 300.0;       ///< plate footprint along y [mm]
-  double plate_edge = 10.0;     ///< edge radius of the plate [mm]
-  double centre_x = 0.0;        ///< x of the form's symmetry plane [mm]
-  double centre_y = 0.0;        ///< y of the form's symmetry plane [mm]
-};
-/// Two ellipsoidal lobes centred at (centre_x -+ it_spacing/2, centre_y, lowest_z + c) merged with a
-/// flat rectangular plate whose underside is at z = lowest_z + c (the lobes' equator), footprint
-/// plate_x x plate_y, all merged by a smooth (C1) soft minimum of width `blend`.
+/// SIT-BAR surrogate (SitBarShape, solver/case/contact_spec.hpp): two ellipsoidal lobes centred at
+/// (centre_x -+ it_spacing/2, centre_y, lowest_z + c) merged with a flat rectangular plate whose
+/// underside is at z = lowest_z + c (the lobes' equator), footprint plate_x x plate_y, all merged by
+/// a smooth (C1) soft minimum of width `blend`.
 std::shared_ptr<const RigidSurface> make_sitbar(const SitBarShape& shape);
 
 /// Rigid body bounded by a closed, consistently oriented triangle surface (outward normals).

@@ -1,10 +1,7 @@
 #include "solver/dynamics/linearised_system.hpp"
 
 #include <mutex>
-
 #include <stdexcept>
-
-#include "io/input_error.hpp"
 
 namespace cushion::solver::dynamics {
 namespace {
@@ -35,10 +32,10 @@ class FrozenTangent final : public material::Material {
 
 }  // namespace
 
-BaseStress base_stress_from_string(const std::string& name, const std::string& where) {
-  if (name == "relaxed") return BaseStress::relaxed;
-  if (name == "as_left") return BaseStress::as_left;
-  throw InputError(where + ": base_stress must be \"relaxed\" or \"as_left\", not \"" + name + "\"");
+SparseMatrix damping_matrix(const Damping& damping, const SparseMatrix& M, const SparseMatrix& K) {
+  SparseMatrix C = damping.rayleigh_alpha * M;
+  if (damping.rayleigh_beta != 0.0) C += damping.rayleigh_beta * K;
+  return C;
 }
 
 std::vector<PointBase> base_point_states(const Assembler& assembler, const StateStore& state,

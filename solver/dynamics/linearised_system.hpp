@@ -9,7 +9,7 @@
 /// factor [A]. The element kernel (integrate_element) is reused unchanged: a frozen-tangent material
 /// returns S_geo and Re C* (real part), then S = 0 and Im C* (imaginary part, no geometric term).
 ///
-/// Base stress S_geo (BaseStress):
+/// Base stress S_geo (BaseStress, solver/case/steady_state_spec.hpp):
 ///   relaxed (default, ABAQUS *STEADY STATE DYNAMICS convention): the long-term stress at F_base, i.e.
 ///     the material integrated from its committed state over an infinitely long hold at F_base;
 ///   as_left: the committed total stress at the end of the previous step (viscous overstress included).
@@ -22,19 +22,17 @@
 #include <vector>
 
 #include "solver/assembler.hpp"
+#include "solver/case/damping.hpp"
+#include "solver/case/steady_state_spec.hpp"
 
 namespace cushion::solver::dynamics {
 
 /// Complex sparse matrix on all DOFs [N/mm].
 using ComplexMatrix = Eigen::SparseMatrix<std::complex<double>>;
 
-/// Which stress enters the geometric stiffness of the linearisation.
-enum class BaseStress {
-  relaxed,  ///< long-term stress at the base deformation (ABAQUS convention, default)
-  as_left   ///< committed total stress at the end of the previous step
-};
-/// "relaxed" / "as_left"; throws cushion::InputError for anything else (`where` names the key).
-BaseStress base_stress_from_string(const std::string& name, const std::string& where);
+/// Rayleigh damping matrix C = alpha M + beta K [N s/mm] from the mass M [t] and a stiffness K [N/mm]
+/// of the same size (the dynamic step's and the steady state's; Damping::structural is not used).
+SparseMatrix damping_matrix(const Damping& damping, const SparseMatrix& M, const SparseMatrix& K);
 
 /// Base state of one quadrature point.
 struct PointBase {

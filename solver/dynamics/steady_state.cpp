@@ -79,7 +79,7 @@ SteadyStateSolver::SteadyStateSolver(HarmonicModel model, Damping damping, Excit
   if (!missing.empty())
     throw std::invalid_argument("steady-state: section \"" + missing.front() +
                                 "\" has no mass density (give density_kg_m3 in its material file)");
-  if (damping_.alpha < 0.0 || damping_.beta < 0.0 || damping_.structural < 0.0)
+  if (damping_.rayleigh_alpha < 0.0 || damping_.rayleigh_beta < 0.0 || damping_.structural < 0.0)
     throw std::invalid_argument("steady-state: damping coefficients must be >= 0");
   if (excitation.driven.empty()) throw std::invalid_argument("steady-state: no driven DOF");
   n_ = model_.system->num_dofs() + static_cast<std::size_t>(model_.extra_dofs);
@@ -123,7 +123,7 @@ SteadyStateSolver::SteadyStateSolver(HarmonicModel model, Damping damping, Excit
 
 ComplexMatrix SteadyStateSolver::dynamic_matrix(double omega) const {
   const SparseMatrix re = Kx_ - omega * omega * M_;
-  const SparseMatrix im = damping_.structural * K0_ + omega * (damping_.alpha * M_ + damping_.beta * K0_);
+  const SparseMatrix im = damping_.structural * K0_ + omega * damping_matrix(damping_, M_, K0_);
   ComplexMatrix Ks = model_.system->stiffness(omega);
   Ks.conservativeResize(static_cast<Eigen::Index>(n_), static_cast<Eigen::Index>(n_));
   ComplexMatrix D = Ks + re.cast<cplx>() + cplx(0.0, 1.0) * im.cast<cplx>();

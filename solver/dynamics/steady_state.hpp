@@ -29,13 +29,6 @@
 
 namespace cushion::solver::dynamics {
 
-/// Step-level damping (ABAQUS *GLOBAL DAMPING / Rayleigh): C = alpha M + beta K_R(0), plus i s K_R(0).
-struct Damping {
-  double alpha = 0.0;       ///< mass-proportional [1/s] (paper: 180)
-  double beta = 0.0;        ///< stiffness-proportional [s] (paper: 1e-4)
-  double structural = 0.0;  ///< structural (hysteretic) loss factor s [-]
-};
-
 /// The model: the linearised solid on its 3 x nodes DOFs plus `extra_dofs` appended DOFs (e.g. the
 /// vertical DOF of a rigid indenter, index 3 nodes + k), coupled by `extra_stiffness`.
 struct HarmonicModel {
@@ -79,7 +72,8 @@ struct SolveStats {
   double assembly_time = 0.0, factorisation_time = 0.0, solve_time = 0.0;
 };
 
-/// Frequency-by-frequency solver.
+/// Frequency-by-frequency solver. Damping (solver/case/damping.hpp): C = alpha M + beta K_R(0)
+/// (damping_matrix), plus i s K_R(0).
 class SteadyStateSolver {
  public:
   /// Throws std::invalid_argument on DOFs out of range, driven and held overlapping, no driven DOF,

@@ -4,20 +4,12 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "io/input_error.hpp"
-
 namespace cushion::solver::dynamics {
 namespace {
 
 double phase_deg(std::complex<double> z) { return std::arg(z) * 180.0 / M_PI; }
 
 }  // namespace
-
-AccelerationReading acceleration_reading_from_string(const std::string& name, const std::string& where) {
-  if (name == "peak") return AccelerationReading::peak;
-  if (name == "peak_to_peak") return AccelerationReading::peak_to_peak;
-  throw InputError(where + ": acceleration reading must be \"peak\" or \"peak_to_peak\", not \"" + name + "\"");
-}
 
 double displacement_amplitude(double acceleration, AccelerationReading reading, double frequency) {
   if (!(frequency > 0.0)) throw std::invalid_argument("displacement_amplitude: frequency must be > 0 Hz");

@@ -6,19 +6,15 @@
 #include <string>
 #include <vector>
 
+#include "solver/case/steady_state_spec.hpp"
 #include "solver/dynamics/steady_state.hpp"
 #include "solver/output/vtu_writer.hpp"
 
 namespace cushion::solver::dynamics {
 
-/// How an acceleration amplitude is read. The paper writes "0.25 m/s^2 peak-to-peak"; cushion's
-/// default is peak_to_peak (the paper's words), i.e. a peak acceleration of a / 2.
-enum class AccelerationReading { peak, peak_to_peak };
-/// "peak" / "peak_to_peak"; throws cushion::InputError naming `where` otherwise.
-AccelerationReading acceleration_reading_from_string(const std::string& name, const std::string& where);
-
 /// Peak displacement amplitude U = a_peak / (2 pi f)^2 [mm] for an acceleration amplitude a [mm/s^2]
-/// read as `reading` at frequency f [Hz] (> 0). Phase reference: displacement (U real, positive).
+/// read as `reading` (AccelerationReading, solver/case/steady_state_spec.hpp) at frequency f [Hz] (> 0).
+/// Phase reference: displacement (U real, positive).
 double displacement_amplitude(double acceleration, AccelerationReading reading, double frequency);
 
 /// Nominal geometry of the dynamic modulus E = (F / area) / (U / thickness).

@@ -281,3 +281,99 @@ TEST(CaseFile, SyntaxErrorNamesLine) {
   const std::string message = error_of(std::string("{\n  \"mesh\": {,\n}"), "syntax");
   expect_error(message, "case.json:2:", "invalid JSON");
 }
+
+namespace {
+
+/// valid_case() plus a third step: a steady-state sweep with the bottom shaken and the top held.
+nlohmann::json sweep_case() {
+  auto j = valid_case();
+  j["steps"].push_back(nlohmann::json::parse(R"({"name": "sweep", "type": "steady_state", "steady_state": {
+      "frequencies": {"start_Hz": 1, "end_Hz": 5, "step_Hz": 1},
+      "excitation": {"set": "bottom", "dof": "z", "displacement_amplitude_mm": 0.01},
+      "held": [{"set": "top", "dof": "z"}], "measure": "top", "area_mm2": 100, "thickness_mm": 20}})"));
+  return j;
+}
+
+}  // namespace
+
+TEST(CaseFile, SteadyStateStepGivesPlainStructs) {
+  auto j = sweep_case();
+  j["steps"][2]["steady_state"]["damping"] = {
+      {"rayleigh_alpha_1_s", 180}, {"rayleigh_beta_s", 1e-4}, {"structural", 0.05}};
+  j["steps"][2]["steady_state"]["base_stress"] = "as_left";
+  const fs::path dir = scratch("sweep");
+  const CaseSpec spec = parse_case_json(j.dump(), dir / "case.json");
+  const SteadyStateSpec& s = spec.steps[2].steady_state;
+  EXPECT_EQ(spec.steps[2].type, StepSpec::Type::steady_state);
+  EXPECT_EQ(s.frequencies, (std::vector<double>{1, 2, 3, 4, 5}));
+  EXPECT_EQ(s.excitation.set, "bottom");
+  EXPECT_EQ(s.component(), 2);
+  EXPECT_FALSE(s.from_acceleration);
+  EXPECT_EQ(s.displacement, 0.01);
+  EXPECT_EQ(s.damping.rayleigh_alpha, 180.0);
+  EXPECT_EQ(s.damping.rayleigh_beta, 1e-4);
+  EXPECT_EQ(s.damping.structural, 0.05);
+  EXPECT_EQ(s.base_stress, BaseStress::as_left);
+  EXPECT_EQ(s.key, "steps[2].steady_state");
+}
+
+TEST(CaseFile, SteadyStateWrongUnitIsNamed) {
+  auto j = sweep_case();
+  j["steps"][2]["steady_state"]["frequencies"].erase("start_Hz");
+  j["steps"][2]["steady_state"]["frequencies"]["start_kHz"] = 0.001;
+  expect_error(error_of(j, "sweep_khz"), "steps[2].steady_state.frequencies.start_kHz", "wrong unit 'kHz'");
+  j = sweep_case();
+  j["steps"][2]["steady_state"]["excitation"].erase("displacement_amplitude_mm");
+  j["steps"][2]["steady_state"]["excitation"]["displacement_amplitude_m"] = 1e-5;
+  expect_error(error_of(j, "sweep_m"), "steps[2].steady_state.excitation.displacement_amplitude_m",
+               "this quantity is given as 'displacement_amplitude_mm' (millimetres)");
+  j = sweep_case();
+  j["steps"][2]["steady_state"]["damping"] = {{"rayleigh_beta_ms", 0.1}};
+  expect_error(error_of(j, "sweep_ms"), "steps[2].steady_state.damping.rayleigh_beta_ms", "wrong unit 'ms'");
+}
+
+TEST(CaseFile, SteadyStateUnknownKeyIsNamedWithSuggestion) {
+  auto j = sweep_case();
+  j["steps"][2]["steady_state"]["base_stres"] = "relaxed";
+  expect_error(error_of(j, "sweep_unknown"), "steps[2].steady_state", "did you mean 'base_stress'");
+  j = sweep_case();
+  j["steps"][2]["steady_state"]["excitation"]["colour"] = 1;
+  expect_error(error_of(j, "sweep_colour"), "steps[2].steady_state.excitation", "colour");
+  j = sweep_case();  // "structural" is a steady-state damping only
+  j["steps"][1]["type"] = "dynamic";
+  j["steps"][1]["damping"] = {{"structural", 0.05}};
+  expect_error(error_of(j, "dynamic_structural"), "steps[1].damping", "structural");
+}
+
+TEST(CaseFile, SteadyStateEnumStringsAreCheckedWhenParsed) {
+  auto j = sweep_case();
+  j["steps"][2]["steady_state"]["base_stress"] = "long_term";
+  expect_error(error_of(j, "sweep_base"), "steps[2].steady_state.base_stress", "long_term");
+  j = sweep_case();
+  auto& x = j["steps"][2]["steady_state"]["excitation"];
+  x.erase("displacement_amplitude_mm");
+  x["acceleration_amplitude_m_s2"] = 0.25;
+  x["amplitude_is"] = "rms";
+  expect_error(error_of(j, "sweep_rms"), "steps[2].steady_state.excitation.amplitude_is", "rms");
+}
+
+TEST(CaseFile, SteadyStateContactMustBeOfTheBaseState) {
+  auto j = sweep_case();
+  j["steps"][2]["steady_state"]["measure"] = {{"contact", "platen"}};
+  expect_error(error_of(j, "sweep_contact"), "steps[2].steady_state.measure.contact",
+               "\"platen\" is not a contact of the base state (contacts of the previous step: none)");
+}
+
+TEST(CaseFile, DynamicStepDampingAndHhtAlpha) {
+  auto j = valid_case();
+  j["steps"][1]["type"] = "dynamic";
+  j["steps"][1]["damping"] = {{"rayleigh_alpha_1_s", 2}, {"rayleigh_beta_s", 1e-3}};
+  j["steps"][1]["newmark"] = {{"alpha", -0.1}};
+  const fs::path dir = scratch("dynamic");
+  const DynamicSpec d = parse_case_json(j.dump(), dir / "case.json").steps[1].dynamic;
+  EXPECT_EQ(d.damping.rayleigh_alpha, 2.0);
+  EXPECT_EQ(d.damping.rayleigh_beta, 1e-3);
+  EXPECT_EQ(d.damping.structural, 0.0);
+  EXPECT_EQ(d.hht_alpha, -0.1);
+  EXPECT_DOUBLE_EQ(d.gamma, 0.6);
+}

@@ -3,7 +3,6 @@
 // solution with a complex modulus (Kelvin-Voigt via Rayleigh beta, Maxwell via Prony terms).
 #include <gtest/gtest.h>
 
-#include "io/input_error.hpp"
 #include "material/neo_hookean.hpp"
 #include "material/viscoelastic.hpp"
 #include "solver/dynamics/sweep.hpp"
@@ -71,7 +70,7 @@ TEST(DynamicsBar, KelvinVoigtRayleighBetaMatchesChainAndWaveSolution) {
     const double w = 2 * M_PI * f;
     const cplx U = 0.1;
     const auto r = solver.solve(f, U);
-    const cplx E = Mc * cplx(1.0, w * d.beta);
+    const cplx E = Mc * cplx(1.0, w * d.rayleigh_beta);
     const auto [top_c, base_c] = chain_reactions(E, bar.rho, bar.w * bar.w, bar.L / bar.n, bar.n, w, U);
     EXPECT_LT(std::abs(r.reaction[0] / top_c - 1.0), 1e-8) << f;  // exact for the mesh
     EXPECT_LT(std::abs(r.reaction[1] / base_c - 1.0), 1e-8) << f;
@@ -129,12 +128,13 @@ TEST(DynamicsSdof, TransmissibilityWithAbsoluteMassDamping) {
   for (double f : {1.0, 5.0, 20.0, 80.0}) {
     const double w = 2 * M_PI * f;
     const auto r = solver.solve(f, 1.0);
-    const cplx ks = k * cplx(1.0, w * damp.beta + damp.structural);
-    const cplx T = ks / (ks - w * w * m + cplx(0, w * damp.alpha * m));
+    const cplx ks = k * cplx(1.0, w * damp.rayleigh_beta + damp.structural);
+    const cplx iwam(0.0, w * damp.rayleigh_alpha * m);  // i w alpha m
+    const cplx T = ks / (ks - w * w * m + iwam);
     EXPECT_LT(std::abs(r.displacement[0] / T - 1.0), 1e-9) << f;
     EXPECT_LT(std::abs(r.reaction[1] / (ks * (1.0 - T)) - 1.0), 1e-9) << f;
     // The relative-velocity alternative (alpha m (u - U)) is measurably different here.
-    const cplx T_rel = (ks + cplx(0, w * damp.alpha * m)) / (ks - w * w * m + cplx(0, w * damp.alpha * m));
+    const cplx T_rel = (ks + iwam) / (ks - w * w * m + iwam);
     EXPECT_GT(std::abs(r.displacement[0] / T_rel - 1.0), 1e-3) << f;
   }
 }
@@ -145,7 +145,6 @@ TEST(DynamicsSweep, AmplitudeFromAcceleration) {
   EXPECT_DOUBLE_EQ(displacement_amplitude(250.0, AccelerationReading::peak, f), 250.0 / (w * w));
   EXPECT_DOUBLE_EQ(displacement_amplitude(250.0, AccelerationReading::peak_to_peak, f), 125.0 / (w * w));
   EXPECT_THROW(displacement_amplitude(250.0, AccelerationReading::peak, 0.0), std::invalid_argument);
-  EXPECT_THROW(acceleration_reading_from_string("rms", "case.json: steps[1]"), cushion::InputError);
 }
 
 }  // namespace

@@ -1,7 +1,6 @@
 // Bad input of the steady-state solver: missing density, non-positive frequency, bad DOF sets.
 #include <gtest/gtest.h>
 
-#include "io/input_error.hpp"
 #include "material/neo_hookean.hpp"
 #include "test_dynamics_support.hpp"
 
@@ -50,7 +49,6 @@ TEST(DynamicsErrors, NonPositiveFrequencyAndBadSets) {
   EXPECT_THROW(SteadyStateSolver(s.model(), {}, {x.driven, x.driven}, {}), std::invalid_argument);       // overlap
   EXPECT_THROW(SteadyStateSolver(s.model(), {}, {{100000}, {}}, {}), std::invalid_argument);             // out of range
   EXPECT_THROW(SteadyStateSolver(s.model(), {-1.0, 0.0, 0.0}, x, {}), std::invalid_argument);           // damping < 0
-  EXPECT_THROW(base_stress_from_string("long_term", "case.json: steps[1].base_stress"), cushion::InputError);
 }
 
 }  // namespace

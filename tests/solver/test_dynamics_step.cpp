@@ -342,7 +342,7 @@ TEST(DynamicStep, BadInputNamesTheKey) {
     return c;
   };
   EXPECT_EQ(error_of(dir, good), "");
-  // Missing density: found when the dynamic step starts (after a preceding static step).
+  // Missing density: found by load_case, before the preceding static step runs.
   json two = good;
   two["steps"] = json::array({{{"name", "pre"}, {"type", "static"}, {"time_period_s", 1}, {"boundary", fixed}},
                               good["steps"][0]});

@@ -43,7 +43,7 @@ TEST(DynamicsTimeVsFrequency, NewmarkSteadyStateMatchesSteadyStateStep) {
   Excitation x{base, lateral};
   x.held.insert(x.held.end(), top.begin(), top.end());
   SteadyStateSolver ssd(model, damp, x, {{"top", top}, {"base", base}});
-  const SparseMatrix C = damp.alpha * sys.mass() + damp.beta * sys.long_term_stiffness();
+  const SparseMatrix C = damping_matrix(damp, sys.mass(), sys.long_term_stiffness());
 
   const double U = 0.005;  // [mm]
   for (double f : {1.0, 5.0, 20.0}) {

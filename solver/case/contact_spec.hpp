@@ -1,5 +1,5 @@
 #pragma once
-/// Contact definitions of a case file step (plain structs; parsed and validated by case_file.cpp).
+/// Contact definitions of a case file step (plain structs; parsed and validated by parse_contact.cpp).
 ///
 ///   "contact": [{"name": "sitbar", "set": "top",
 ///                "indenter": {"type": "sitbar", ...} (see IndenterSpec),
@@ -15,14 +15,44 @@
 /// (state such as multipliers and stick points carries over). force_factor multiplies the
 /// reported forces (4 for a quarter model with two symmetry planes).
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
-#include <vector>
 
-#include "solver/contact/contact_set.hpp"
-#include "solver/contact/rigid_surface.hpp"
+#include "material/tensor.hpp"
 
 namespace cushion::solver {
+
+/// Contact parameters (defaults: the SIT-BAR case); their use: solver/contact/contact_set.hpp.
+struct ContactParameters {
+  double penalty = 1.0;             ///< normal penalty stiffness per unit area [MPa/mm = N/mm^3]
+  double tangential_penalty = 0.0;  ///< tangential penalty per unit area [MPa/mm]; 0: 0.1 x penalty
+  double friction = 0.0;            ///< Coulomb coefficient mu [-] (0: frictionless)
+  double tolerance = 0.1;           ///< largest penetration accepted after augmentation [mm]
+  double smoothing = -1.0;          ///< width delta of the C1 contact law [mm]; < 0: tolerance / 2
+  int max_augmentations = 10;       ///< Uzawa updates per increment before giving up
+};
+
+/// Parametric SIT-BAR surrogate (docs/physics.md 1.1; every number assumed unless noted); the surface:
+/// make_sitbar in solver/contact/rigid_surface.hpp.
+/// Default c = 120 mm (docs/physics.md proposes 60): with c = 60 the lobe flanks turn vertical exactly at
+/// 60 mm travel and the plate rim (at the equator) lands on the block, so the paper's 60 mm cannot
+/// be pressed smoothly. With c = 120 the plate stays 60 mm above the foam at full travel and the
+/// flank slope at 60 mm above the lowest point is bounded (dz/dx = (c/a) r / sqrt(1 - r^2) = 2.1
+/// laterally, 1.6 fore-aft, r = sqrt(3)/2).
+struct SitBarShape {
+  double lowest_z = 80.0;       ///< z of the lobes' lowest points at zero travel [mm]
+  double it_spacing = 120.0;    ///< distance between the two lobe centres along x [mm] (RESNA jig, sourced)
+  double a = 100.0;             ///< lobe semi-axis along x (lateral) [mm]
+  double b = 130.0;             ///< lobe semi-axis along y (fore-aft) [mm]
+  double c = 120.0;             ///< lobe semi-axis along z (vertical) [mm]
+  double blend = 20.0;          ///< soft-min blend width between lobes and plate [mm]
+  double plate_x = 360.0;       ///< plate footprint along x [mm]
+  double plate_y = 300.0;       ///< plate footprint along y [mm]
+  double plate_edge = 10.0;     ///< edge radius of the plate [mm]
+  double centre_x = 0.0;        ///< x of the form's symmetry plane [mm]
+  double centre_y = 0.0;        ///< y of the form's symmetry plane [mm]
+};
 
 /// Indenter geometry as given in the case file [mm].
 ///  {"type": "plane", "point_mm": [x,y,z], "normal": [nx,ny,nz]}        normal points to the foam
@@ -39,13 +69,14 @@ struct IndenterSpec {
   Vec3 direction = Vec3::UnitZ();  ///< plane normal / cylinder axis [-]
   double radius = 0.0;             ///< [mm]
   double edge_radius = 1.0;        ///< flat punch [mm]
-  SitBarShape sitbar;
+  SitBarShape sitbar;              ///< type sitbar only
   std::filesystem::path stl_file;  ///< resolved against the case folder
 };
 
+/// One "contact" entry of a step.
 struct ContactSpec {
-  std::string name;
-  std::string set;
+  std::string name;                      ///< contact name, unique in its step
+  std::string set;                       ///< node set of the foam surface
   IndenterSpec indenter;
   Vec3 motion = Vec3::Zero();            ///< [mm]
   std::optional<std::string> amplitude;  ///< name in CaseSpec::amplitudes
@@ -54,7 +85,10 @@ struct ContactSpec {
   std::string key;                       ///< "steps[0].contact[0]" for messages
 };
 
-/// The rigid surface of an indenter (reads and checks the STL file).
+class RigidSurface;  // solver/contact/rigid_surface.hpp
+
+/// The rigid surface of an indenter (reads and checks the STL file). Defined in solver/contact
+/// (contact_contributor.cpp); the declaration moves to solver/contact at the merge.
 std::shared_ptr<const RigidSurface> make_indenter(const IndenterSpec& spec, const std::string& where);
 
 }  // namespace cushion::solver

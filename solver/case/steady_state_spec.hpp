@@ -1,7 +1,8 @@
 #pragma once
-/// The "steady_state" step of a case file: plain structs and their parser. A steady-state step is a
-/// linear perturbation about the committed end state of the previous step (it leaves that state
-/// unchanged); it needs a preceding static or visco step. Units: Hz, mm, mm^2, mm/s^2, 1/s, s.
+/// The "steady_state" step of a case file: plain structs (parsed by parse_steady_state.cpp). A
+/// steady-state step is a linear perturbation about the committed end state of the previous step
+/// (it leaves that state unchanged); it needs a preceding static or visco step. Units: Hz, mm,
+/// mm^2, mm/s^2, 1/s, s.
 ///
 /// {"name": "sweep", "type": "steady_state",
 ///  "steady_state": {
@@ -20,6 +21,7 @@
 ///        the dynamic stiffness: held (base shaken, K = -R/U), the excited one itself (K = R/U), or
 ///        a free indenter (K = R_base/U, the driving-point stiffness; transmissibility = w/U)
 ///    "damping"?: {"rayleigh_alpha_1_s"? = 0, "rayleigh_beta_s"? = 0, "structural"? = 0},   all >= 0
+///        (damping.hpp)
 ///    "base_stress"?: "relaxed" | "as_left" = "relaxed",
 ///    "area_mm2": A | "contact", "thickness_mm": H,                nominal modulus E = (F/A)/(U/H), > 0;
 ///        "contact": the tributary area of the measured indenter's closed nodes at the base state
@@ -27,20 +29,33 @@
 ///    "linear_solver"?: "iterative" | "direct" = "iterative",      steady_state.hpp (SolveMethod)
 ///    "gmres_tolerance"?: 1e-10                                    relative residual, in (0, 1e-3]
 ///  }}
+/// Checked when parsed: keys, units, values, set names defined by the case, a preceding step, contact
+/// names (contacts of the last static, visco or dynamic step before). Checked once the mesh and the
+/// material are built (check_loaded_case, case_file.hpp): the sets exist in the mesh and are not
+/// empty, the measured set has a node driven or held in the excitation's dof, the material has a
+/// mass density.
 #include <array>
-#include <filesystem>
-#include <functional>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
+#include "solver/case/damping.hpp"
 
-namespace cushion::solver::dynamics {
+namespace cushion::solver {
+
+/// Which stress enters the geometric stiffness of the linearisation (solver/dynamics/linearised_system.hpp).
+enum class BaseStress {
+  relaxed,  ///< long-term stress at the base deformation (ABAQUS convention, default)
+  as_left   ///< committed total stress at the end of the previous step
+};
+
+/// How an acceleration amplitude is read. The paper writes "0.25 m/s^2 peak-to-peak"; cushion's
+/// default is peak_to_peak (the paper's words), i.e. a peak acceleration of a / 2.
+enum class AccelerationReading { peak, peak_to_peak };
 
 /// Node set and components (x, y, z) of a steady-state boundary entry.
 struct SetDofs {
-  std::string set;
-  std::array<bool, 3> dofs{false, false, false};
+  std::string set;                                ///< node set name
+  std::array<bool, 3> dofs{false, false, false};  ///< components x, y, z
   std::string key;  ///< "steps[1].steady_state.held[0]", for messages
 };
 
@@ -52,22 +67,21 @@ struct IndenterMotion {
   std::string key;      ///< "steps[2].steady_state.indenters[0]", for messages
 };
 
+/// The "steady_state" object of a step.
 struct SteadyStateSpec {
   std::vector<double> frequencies;  ///< [Hz], > 0, in sweep order
   SetDofs excitation;               ///< exactly one component; set empty if a contact is excited
   std::string excitation_contact;   ///< excited indenter (contact name) or empty
   bool from_acceleration = true;    ///< amplitude given as an acceleration
   double acceleration = 0.0;        ///< [mm/s^2] as given (peak or peak-to-peak)
-  bool peak_to_peak = true;         ///< reading of `acceleration`
+  AccelerationReading reading = AccelerationReading::peak_to_peak;  ///< reading of `acceleration`
   double displacement = 0.0;        ///< [mm] peak displacement (from_acceleration false)
-  std::vector<SetDofs> held;
-  std::vector<IndenterMotion> indenters;
+  std::vector<SetDofs> held;        ///< components held at zero
+  std::vector<IndenterMotion> indenters;  ///< indenters listed as held or free
   std::string measure;              ///< set of the measured reaction (empty if measure_contact)
   std::string measure_contact;      ///< measured indenter (contact name) or empty
-  double alpha = 0.0;               ///< Rayleigh mass-proportional [1/s]
-  double beta = 0.0;                ///< Rayleigh stiffness-proportional [s]
-  double structural = 0.0;          ///< structural loss factor [-]
-  bool relaxed_base = true;         ///< base stress: relaxed (true) or as_left
+  Damping damping;                  ///< Rayleigh [1/s], [s] and structural [-] damping
+  BaseStress base_stress = BaseStress::relaxed;  ///< stress of the geometric stiffness
   double area = 0.0;                ///< [mm^2] (0 with area_from_contact)
   bool area_from_contact = false;   ///< area = closed area of the measured indenter
   double thickness = 0.0;           ///< [mm]
@@ -75,15 +89,8 @@ struct SteadyStateSpec {
   bool iterative = true;            ///< GMRES + real Cholesky preconditioner (else complex LU)
   double gmres_tolerance = 1e-10;   ///< [-]
   std::string key;                  ///< "steps[1].steady_state"
+  /// The excitation's component: 0, 1, 2 for x, y, z.
+  int component() const { return excitation.dofs[0] ? 0 : excitation.dofs[1] ? 1 : 2; }
 };
 
-/// Parses the object "steady_state" of a step (path e.g. "steps[1].steady_state") of the case file
-/// `source`. `set_exists` says whether a set name is defined; `first_step`: no previous step (error).
-/// Throws cushion::InputError "source: path.key: problem" on unknown keys, missing keys, wrong
-/// values (frequencies <= 0, unknown sets, ...). Contact names are checked by the step when it runs
-/// (before it writes anything): they must be contacts of the previous step.
-SteadyStateSpec parse_steady_state_spec(const nlohmann::json& value, const std::string& source,
-                                        const std::string& path,
-                                        const std::function<bool(const std::string&)>& set_exists, bool first_step);
-
-}  // namespace cushion::solver::dynamics
+}  // namespace cushion::solver
