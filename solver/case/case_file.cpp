@@ -16,15 +16,15 @@ namespace case_parse {
 
 SolverSpec parse_solver(const Obj& o) {
   SolverSpec s;
-  if (o.has("threads")) s.threads = static_cast<int>(o.integer("threads", 0));
+  if (o.has("threads")) s.threads = o.integer("threads", 0, 1024);
   const std::string ls = o.choice_or("linear_solver", {"auto", "cholmod", "umfpack"}, "auto");
   s.linear_solver = ls == "cholmod"   ? SolverSpec::LinearSolver::cholmod
                     : ls == "umfpack" ? SolverSpec::LinearSolver::umfpack
                                       : SolverSpec::LinearSolver::automatic;
   s.residual_tolerance = o.positive_or("residual_tolerance", s.residual_tolerance);
   s.correction_tolerance = o.positive_or("correction_tolerance", s.correction_tolerance);
-  if (o.has("max_iterations")) s.max_iterations = static_cast<int>(o.integer("max_iterations", 1));
-  if (o.has("max_cutbacks")) s.max_cutbacks = static_cast<int>(o.integer("max_cutbacks", 0));
+  if (o.has("max_iterations")) s.max_iterations = o.integer("max_iterations", 1, 1000);
+  if (o.has("max_cutbacks")) s.max_cutbacks = o.integer("max_cutbacks", 0, 100);
   s.cutback_factor = o.positive_or("cutback_factor", s.cutback_factor);
   if (s.cutback_factor >= 1.0) o.fail("cutback_factor", "must be < 1");
   s.growth_factor = o.positive_or("growth_factor", s.growth_factor);

@@ -87,11 +87,13 @@ double Obj::non_negative(const std::string& key) const {
   return x;
 }
 
-long long Obj::integer(const std::string& key, long long min) const {
+int Obj::integer(const std::string& key, int min, int max) const {
   const double x = number(key);
-  if (x != std::floor(x) || std::abs(x) > 1e15) fail(key, "must be an integer, found " + io::format_double(x));
-  if (x < static_cast<double>(min)) fail(key, "must be >= " + std::to_string(min) + ", found " + io::format_double(x));
-  return static_cast<long long>(x);
+  if (x != std::floor(x)) fail(key, "must be an integer, found " + io::format_double(x));
+  if (x < static_cast<double>(min) || x > static_cast<double>(max))
+    fail(key, "must be an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "], found " +
+                  io::format_double(x));
+  return static_cast<int>(x);
 }
 
 std::string Obj::choice(const std::string& key, const std::vector<std::string>& choices) const {

@@ -50,7 +50,7 @@ class Obj {
   double positive(const std::string& key) const;                            ///< number > 0
   double positive_or(const std::string& key, double fallback) const;        ///< positive, fallback if absent
   double non_negative(const std::string& key) const;                        ///< number >= 0
-  long long integer(const std::string& key, long long min) const;           ///< whole number >= min
+  int integer(const std::string& key, int min, int max) const;  ///< whole number in [min, max] (else names the key)
   std::string string(const std::string& key) const { return at(key).string(); }
   /// A string out of `choices`.
   std::string choice(const std::string& key, const std::vector<std::string>& choices) const;

@@ -86,7 +86,7 @@ ContactParameters parse_contact_parameters(const Obj& o) {
     if (!(p.smoothing >= 0.0) || !(p.smoothing <= 10.0 * p.tolerance))
       o.fail("smoothing_mm", "must be >= 0 and at most 10 x tolerance_mm [mm]");
   }
-  if (o.has("max_augmentations")) p.max_augmentations = static_cast<int>(o.integer("max_augmentations", 0));
+  if (o.has("max_augmentations")) p.max_augmentations = o.integer("max_augmentations", 0, 1000);
   return p;
 }
 

@@ -16,7 +16,7 @@ IncrementSpec parse_increment(const Obj* o, double period) {
   inc.initial = o->positive_or("initial_s", period);
   inc.min = o->positive_or("min_s", std::min(1e-5 * period, inc.initial));
   inc.max = o->positive_or("max_s", period);
-  if (o->has("max_increments")) inc.max_increments = static_cast<int>(o->integer("max_increments", 1));
+  if (o->has("max_increments")) inc.max_increments = o->integer("max_increments", 1, 10000000);
   if (inc.initial > period) o->fail("initial_s", "must not exceed the step's time_period_s");
   if (inc.min > inc.initial) o->fail("min_s", "must not exceed initial_s");
   if (inc.initial > inc.max) o->fail("max_s", "must be >= initial_s");
@@ -64,7 +64,7 @@ OutputSpec parse_output(const Obj& o, const CaseSpec& spec) {
     o.fail("frames_every_s", "give either frames_every_s or frame_every_increments, not both");
   if (o.has("frames_every_s")) out.frames_every = o.positive("frames_every_s");
   if (o.has("frame_every_increments"))
-    out.frame_every_increments = static_cast<int>(o.integer("frame_every_increments", 1));
+    out.frame_every_increments = o.integer("frame_every_increments", 1, 10000000);
   if (!o.has("history")) return out;
   const std::size_t n = o.at("history").expect_array(0, 10000);
   for (std::size_t i = 0; i < n; ++i) {

@@ -195,6 +195,19 @@ TEST(CaseFile, WrongTypeIsNamed) {
   expect_error(error_of(j, "integer"), "mesh.generate.elements[1]", "integer");
 }
 
+// Fuzzing/hand findings (issue 16): integer keys past their range wrapped silently when cast to int.
+TEST(CaseFile, IntegerKeysPastTheirRangeAreRejected) {
+  auto j = valid_case();
+  j["solver"]["threads"] = 4294967295.0;
+  expect_error(error_of(j, "threads"), "solver.threads", "must be an integer in [0, 1024]");
+  j = valid_case();
+  j["solver"]["max_iterations"] = 2147483648.0;
+  expect_error(error_of(j, "iterations"), "solver.max_iterations", "must be an integer in [1, 1000]");
+  j = valid_case();
+  j["steps"][1]["increment"]["max_increments"] = 4294967296.0;
+  expect_error(error_of(j, "increments"), "steps[1].increment.max_increments", "must be an integer in [1, 10000000]");
+}
+
 TEST(CaseFile, WrongUnitIsNamed) {
   auto j = valid_case();
   j["steps"][0].erase("time_period_s");
