@@ -2,9 +2,10 @@
 """Checks the architecture: every project #include stays inside what its CMake target links, and the
 folders form no cycle.
 
-    python3 tools/check_layers.py [BUILD_DIR]      (default: build; configured by tools/test.sh)
+    python3 tools/check_layers.py [BUILD_DIR]
 
-1. Link closure: `cmake --graphviz` writes the target graph of BUILD_DIR's configuration; a file of a
+1. Link closure: `cmake --graphviz` writes the target graph of BUILD_DIR's configuration (re-configured in
+   place; without BUILD_DIR a temporary folder is configured and removed); a file of a
    folder may include a header of another folder only if the folder's target links that folder's target
    (directly or through others).
 2. Folder graph: the folders (solver's sub-folders counted separately, material/io apart from material)
@@ -52,8 +53,8 @@ def link_closure(build_dir):
     """target -> set of targets it links (transitively), from CMake's graphviz output."""
     with tempfile.TemporaryDirectory() as tmp:
         dot = os.path.join(tmp, "deps.dot")
-        subprocess.run(["cmake", "-S", ROOT, "-B", build_dir, f"--graphviz={dot}"], check=True,
-                       stdout=subprocess.DEVNULL)
+        subprocess.run(["cmake", "-S", ROOT, "-B", build_dir or os.path.join(tmp, "build"), f"--graphviz={dot}"],
+                       check=True, stdout=subprocess.DEVNULL)
         text = open(dot).read()
     names = dict(re.findall(r'"(node\d+)"\s*\[\s*label\s*=\s*"([^"]+)"', text))
     edges = {}
@@ -119,7 +120,7 @@ def find_cycles(graph):
 
 
 def main():
-    build_dir = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "build"))
+    build_dir = os.path.abspath(sys.argv[1]) if len(sys.argv) > 1 else None
     closure = link_closure(build_dir)
     problems, graph = [], {}
     for rel, number, folder, header in project_includes():

@@ -2,7 +2,7 @@
 # Installs the Debian packages cushion needs (as root), only those missing.
 set -euo pipefail
 packages=(cmake g++ make libeigen3-dev libsuitesparse-dev libtet1.5-dev libvtk9-dev libgtest-dev
-          libcli11-dev nlohmann-json3-dev libceres-dev gnuplot-nox
+          libcli11-dev nlohmann-json3-dev libceres-dev gnuplot-nox python3
           libopenblas0-pthread)  # OpenBLAS for CHOLMOD/UMFPACK (ATLAS, pulled in otherwise, is much slower)
 missing=()
 for p in "${packages[@]}"; do
