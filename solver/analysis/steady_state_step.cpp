@@ -10,7 +10,7 @@
 #include <thread>
 
 #include "io/input_error.hpp"
-#include "solver/contact/contact_contributor.hpp"
+#include "solver/analysis/contact_contributor.hpp"
 #include "solver/dynamics/contact_linearisation.hpp"
 #include "solver/dynamics/sweep.hpp"
 
@@ -22,11 +22,11 @@ using namespace dynamics;
 
 /// Nodes of a set named by a step entry; InputError "case: key.set: ..." if missing or empty.
 const std::vector<int>& set_nodes(const AnalysisContext& ctx, const std::string& set, const std::string& key) {
-  const auto it = ctx.mesh.node_sets.find(set);
-  if (it == ctx.mesh.node_sets.end())
-    throw InputError(ctx.spec.file.string() + ": " + key + ": set \"" + set + "\" does not exist in the mesh");
+  const auto it = ctx.mesh().node_sets.find(set);
+  if (it == ctx.mesh().node_sets.end())
+    throw InputError(ctx.spec().file.string() + ": " + key + ": set \"" + set + "\" does not exist in the mesh");
   if (it->second.empty())
-    throw InputError(ctx.spec.file.string() + ": " + key + ": set \"" + set + "\" has no nodes");
+    throw InputError(ctx.spec().file.string() + ": " + key + ": set \"" + set + "\" has no nodes");
   return it->second;
 }
 
@@ -49,20 +49,19 @@ struct Indenter {
 /// The contacts of the base state: those of the last static/visco step before `step` (in order).
 std::vector<Indenter> base_state_indenters(const AnalysisContext& ctx, const StepSpec& step) {
   const StepSpec* previous = nullptr;
-  for (const StepSpec& s : ctx.spec.steps) {
+  for (const StepSpec& s : ctx.spec().steps) {
     if (&s == &step) break;
     if (s.type != StepSpec::Type::steady_state) previous = &s;
   }
   std::vector<Indenter> out;
   if (!previous) return out;
   for (const ContactSpec& c : previous->contact) {
-    const auto it = ctx.contributors.find("contact:" + c.name);
-    const auto* contact = it == ctx.contributors.end() ? nullptr : dynamic_cast<const ContactContributor*>(it->second.get());
+    const ContactContributor* contact = ctx.find_contact(c.name);
     if (!contact) continue;
     Indenter ind;
     ind.name = c.name;
     ind.set = &contact->set();
-    ind.dof = static_cast<int>(3 * ctx.mesh.num_nodes() + out.size());
+    ind.dof = static_cast<int>(3 * ctx.mesh().num_nodes() + out.size());
     out.push_back(std::move(ind));
   }
   return out;
@@ -79,14 +78,14 @@ std::string names(const std::vector<Indenter>& list) {
 
 void SteadyStateStep::run(AnalysisContext& ctx) {
   const SteadyStateSpec& s = spec_.steady_state;
-  const std::string where = ctx.spec.file.string() + ": " + s.key;
+  const std::string where = ctx.spec().file.string() + ": " + s.key;
   // --- input checks, before anything is computed or written ---
-  const System& system = ctx.system(ctx.constrained);
+  const System& system = ctx.system(ctx.model().constrained);
   const Assembler& assembler = *system.assembler;
   for (const Section& section : assembler.sections())
     if (!(section.density > 0.0))
       throw InputError(where + ": the material \"" + section.name + "\" has no mass density (give density_kg_m3 in " +
-                       ctx.spec.material_file.string() + ")");
+                       ctx.spec().material_file.string() + ")");
   const int c = s.excitation.dofs[0] ? 0 : s.excitation.dofs[1] ? 1 : 2;
   Vec3 e = Vec3::Zero();
   e(c) = 1.0;
@@ -105,24 +104,24 @@ void SteadyStateStep::run(AnalysisContext& ctx) {
     if (m.free) i.role = Indenter::Role::free, i.mass = m.mass;
   }
   Indenter* measured_indenter = s.measure_contact.empty() ? nullptr : &indenter(s.measure_contact, ".measure.contact");
-  const std::size_t n_nodes_dofs = 3 * ctx.mesh.num_nodes();
+  const std::size_t n_nodes_dofs = 3 * ctx.mesh().num_nodes();
   const std::size_t n_all = n_nodes_dofs + indenters.size();
   std::vector<Eigen::Triplet<double>> contact_triplets;
   for (Indenter& i : indenters) {
     try {
-      i.lin = linearise_contact(ctx.mesh, *i.set, ctx.u, i.dof, e);
+      i.lin = linearise_contact(ctx.mesh(), *i.set, ctx.model().u, i.dof, e);
     } catch (const std::runtime_error& err) {
       throw AnalysisError("step '" + spec_.name + "': cannot linearise the contact: " + err.what());
     }
     const bool named = i.role != Indenter::Role::held || &i == measured_indenter;
     if (i.lin.closed.empty()) {
       const std::string msg = "contact '" + i.name + "' has no closed node at the base state (t = " +
-                              std::to_string(ctx.time) + " s, smallest gap " +
+                              std::to_string(ctx.model().time) + " s, smallest gap " +
                               std::to_string(*std::min_element(i.set->gaps().begin(), i.set->gaps().end())) +
                               " mm): the indenter does not touch the foam";
       if (named) throw InputError(where + ": " + msg + ", so the sweep would measure nothing; press it into the foam in "
                                   "the previous step");
-      ctx.log << "  warning: step '" << spec_.name << "': " << msg << " (held, no effect)\n";
+      ctx.log() << "  warning: step '" << spec_.name << "': " << msg << " (held, no effect)\n";
     }
     contact_triplets.insert(contact_triplets.end(), i.lin.stiffness.begin(), i.lin.stiffness.end());
   }
@@ -182,20 +181,20 @@ void SteadyStateStep::run(AnalysisContext& ctx) {
   auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   std::unique_ptr<LinearisedSystem> linearised;
   try {
-    auto points = base_point_states(assembler, ctx.state, ctx.u,
+    auto points = base_point_states(assembler, ctx.model().material, ctx.model().u,
                                     s.relaxed_base ? BaseStress::relaxed : BaseStress::as_left);
-    linearised = std::make_unique<LinearisedSystem>(ctx.mesh, assembler.sections(), std::move(points), ctx.u);
+    linearised = std::make_unique<LinearisedSystem>(ctx.mesh(), assembler.sections(), std::move(points), ctx.model().u);
   } catch (const std::runtime_error& e) {
     throw AnalysisError("step '" + spec_.name + "': cannot linearise the base state: " + e.what());
   }
   model.system = linearised.get();
   const double setup = seconds();
-  ctx.log << "step '" << spec_.name << "' (steady_state, " << s.frequencies.size() << " frequencies, "
+  ctx.log() << "step '" << spec_.name << "' (steady_state, " << s.frequencies.size() << " frequencies, "
           << (s.relaxed_base ? "relaxed" : "as-left") << " base stress, alpha = " << s.alpha
-          << " 1/s, beta = " << s.beta << " s, structural = " << s.structural << ") about t = " << ctx.time
+          << " 1/s, beta = " << s.beta << " s, structural = " << s.structural << ") about t = " << ctx.model().time
           << " s; linearisation " << setup << " s\n";
   for (const Indenter& i : indenters)
-    ctx.log << "  indenter '" << i.name << "': "
+    ctx.log() << "  indenter '" << i.name << "': "
             << (i.role == Indenter::Role::held ? "held" : i.role == Indenter::Role::driven ? "driven" : "free")
             << (i.role == Indenter::Role::free ? ", mass " + std::to_string(1e3 * i.mass) + " kg" : std::string())
             << ", " << i.lin.closed.size() << " closed nodes (frozen normal springs" << (i.set->parameters().friction > 0.0 ? ", sticking" : ", sliding freely")
@@ -234,8 +233,8 @@ void SteadyStateStep::run(AnalysisContext& ctx) {
                       spec_.name.c_str(), f, U, 1e3 * std::abs(row.modulus), std::arg(row.stiffness) * 180.0 / M_PI,
                       solve_time[k], solver.stats().iterations - iterations);
         const std::lock_guard<std::mutex> lock(report);
-        ctx.log << "  " << line << "\n";
-        if (ctx.progress) *ctx.progress << line << std::endl;
+        ctx.log() << "  " << line << "\n";
+        ctx.report_progress(line);
       }
       const SolveStats& c = solver.stats();
       const std::lock_guard<std::mutex> lock(report);
@@ -269,7 +268,7 @@ void SteadyStateStep::run(AnalysisContext& ctx) {
   // --- outputs, only after every frequency succeeded ---
   std::vector<SweepRow> rows;
   for (const auto& r : responses) rows.push_back(make_row(r, measure, geometry));
-  const std::filesystem::path dir = ctx.output.pvd_file().parent_path();
+  const std::filesystem::path dir = ctx.output().pvd_file().parent_path();
   const std::string measured_name =
       measured_indenter ? "indenter '" + measured_indenter->name + "'" : "set " + s.measure;
   const std::string excited_name =
@@ -278,7 +277,7 @@ void SteadyStateStep::run(AnalysisContext& ctx) {
   std::snprintf(comment, sizeof comment,
                 "step %s: base state at t = %.6g s (%s stress); %s excited in %c, %s; measured %s (%s); "
                 "E = (F / %.6g mm^2) / (U / %.6g mm); damping alpha = %.6g 1/s, beta = %.6g s, structural = %.6g",
-                spec_.name.c_str(), ctx.time, s.relaxed_base ? "relaxed" : "as-left",
+                spec_.name.c_str(), ctx.model().time, s.relaxed_base ? "relaxed" : "as-left",
                 excited_name.c_str(), "xyz"[c],
                 s.from_acceleration ? (s.peak_to_peak ? "acceleration read as peak-to-peak" : "acceleration read as peak")
                                     : "displacement amplitude",
@@ -294,11 +293,11 @@ void SteadyStateStep::run(AnalysisContext& ctx) {
   write_sweep_csv(dir / (spec_.name + "_sweep.csv"), rows, comments);
   if (s.vtk) {
     ResultSeries series(dir, spec_.name + "_sweep");
-    for (const auto& r : responses) write_frequency_frame(series, ctx.mesh, r);
+    for (const auto& r : responses) write_frequency_frame(series, ctx.mesh(), r);
   }
   double total = 0.0;
   for (double t : solve_time) total += t;
-  ctx.log << "step '" << spec_.name << "' done: " << nf << " frequencies on " << threads << " threads, "
+  ctx.log() << "step '" << spec_.name << "' done: " << nf << " frequencies on " << threads << " threads, "
           << linearised->num_dofs() << " DOFs, " << total / nf << " s per frequency (thread time), wall "
           << seconds() << " s; " << (s.iterative ? "GMRES + real Cholesky" : "complex LU") << ": "
           << cost.real_factorisations << " real and " << cost.complex_factorisations << " complex factorisations ("

@@ -54,7 +54,4 @@ struct ContactSpec {
   std::string key;                       ///< "steps[0].contact[0]" for messages
 };
 
-/// The rigid surface of an indenter (reads and checks the STL file).
-std::shared_ptr<const RigidSurface> make_indenter(const IndenterSpec& spec, const std::string& where);
-
 }  // namespace cushion::solver
