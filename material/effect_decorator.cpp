@@ -50,6 +50,10 @@ void EffectDecorator::initial_state(std::span<double> state) const {
   own_initial_state(own(state));
 }
 
+Vec6 EffectDecorator::viscous_stress(const Mat3& F, std::span<const double> state) const {
+  return inner_->viscous_stress(F, state.first(inner_->state_size()));
+}
+
 void EffectDecorator::own_initial_state(std::span<double> own_state) const {
   for (double& x : own_state) x = 0.0;
 }

@@ -35,6 +35,10 @@ class EffectDecorator : public Material {
   std::size_t state_size() const override { return inner_->state_size() + own_size_; }
   /// Inner virgin state, then own_initial_state() for the effect's part.
   void initial_state(std::span<double> state) const override;
+  /// The inner model's viscous stress [MPa] on the inner part of the state; effects that rescale
+  /// the inner stress (Mullins, strain-dependent Prony) scale it alike. Rate terms computed from
+  /// F_old (stiffness damping, pneumatic) are not in the state and not included.
+  Vec6 viscous_stress(const Mat3& F, std::span<const double> state) const override;
 
   const Material& inner() const { return *inner_; }
 

@@ -42,6 +42,10 @@ PointResponse MullinsEffect::integrate(const Mat3& F_old, const Mat3& F_new, dou
   return r;
 }
 
+Vec6 MullinsEffect::viscous_stress(const Mat3& F, std::span<const double> state) const {
+  return eta(energy_base_->evaluate(F).W, own(state)[0]) * EffectDecorator::viscous_stress(F, state);
+}
+
 Mat6c MullinsEffect::complex_tangent(const Mat3& F_base, double omega) const {
   const ElasticEval e = energy_base_->evaluate(F_base);
   const double deta_dW = 2.0 / (p_.r * std::sqrt(std::numbers::pi) * (p_.m + p_.beta * e.W));

@@ -37,6 +37,8 @@ class MullinsEffect final : public EffectDecorator {
   PointResponse integrate(const Mat3& F_old, const Mat3& F_new, double dt, std::span<const double> state_old,
                           std::span<double> state_new) const override;
   Mat6c complex_tangent(const Mat3& F_base, double omega) const override;
+  /// eta times the inner viscous stress [MPa] (the softening scales the whole inner stress).
+  Vec6 viscous_stress(const Mat3& F, std::span<const double> state) const override;
   std::string describe() const override;
 
   /// Softening factor eta [-] at base energy W with maximum W_max [MPa].

@@ -29,6 +29,10 @@ PointResponse StrainDependentPronyEffect::integrate(const Mat3& F_old, const Mat
   return r;
 }
 
+Vec6 StrainDependentPronyEffect::viscous_stress(const Mat3& F, std::span<const double> state) const {
+  return factor(F.determinant()) * EffectDecorator::viscous_stress(F, state);
+}
+
 Mat6c StrainDependentPronyEffect::complex_tangent(const Mat3& F_base, double omega) const {
   const std::complex<double> viscous = prony_complex_factor(visco_->terms(), omega) - 1.0;
   const Mat6 C_inf = visco_->long_term_base().evaluate(F_base).dS_dE;

@@ -24,6 +24,8 @@ class StrainDependentPronyEffect final : public EffectDecorator {
   PointResponse integrate(const Mat3& F_old, const Mat3& F_new, double dt, std::span<const double> state_old,
                           std::span<double> state_new) const override;
   Mat6c complex_tangent(const Mat3& F_base, double omega) const override;
+  /// f(J) sum a_i H_i [MPa].
+  Vec6 viscous_stress(const Mat3& F, std::span<const double> state) const override;
   std::string describe() const override;
 
   /// Scale factor f(J) = J^{-c} [-] of the Prony contributions.

@@ -56,6 +56,11 @@ class Material {
   /// their real tangent. Reference frame, Voigt as in tensor.hpp.
   virtual Mat6c complex_tangent(const Mat3& F_base, double omega) const = 0;
 
+  /// Viscous part of the PK2 stress [MPa] (reference frame, Voigt stress order) at F_new = F with
+  /// the state `state` that integrate() wrote there (state_new): the part that relaxes at rest
+  /// (Prony terms; S - S_inf for Viscoelastic). For output only. Default: zero (no viscous stress).
+  virtual Vec6 viscous_stress(const Mat3& F, std::span<const double> state) const;
+
   /// One-line human-readable description (model name and main parameters, with units).
   virtual std::string describe() const = 0;
 };

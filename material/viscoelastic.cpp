@@ -109,6 +109,12 @@ PointResponse Viscoelastic::integrate(const Mat3& /*F_old*/, const Mat3& F_new, 
   return r;
 }
 
+Vec6 Viscoelastic::viscous_stress(const Mat3& /*F*/, std::span<const double> state) const {
+  Vec6 S = Vec6::Zero();
+  for (std::size_t i = 0; i < terms_.size(); ++i) S += a_[i] * Eigen::Map<const Vec6>(state.data() + 6 * (i + 1));
+  return S;
+}
+
 Mat6c Viscoelastic::complex_tangent(const Mat3& F_base, double omega) const {
   return prony_complex_factor(terms_, omega) * long_term_->evaluate(F_base).dS_dE.cast<std::complex<double>>();
 }

@@ -55,6 +55,8 @@ class Viscoelastic final : public Material {
                           std::span<const double> state_old,
                           std::span<double> state_new) const override;
   Mat6c complex_tangent(const Mat3& F_base, double omega) const override;
+  /// sum a_i H_i [MPa] from the state (= S - S_inf(F)).
+  Vec6 viscous_stress(const Mat3& F, std::span<const double> state) const override;
   std::string describe() const override;
 
   const Hyperelastic& long_term_base() const { return *long_term_; }

@@ -7,7 +7,7 @@
 
 #include "io/input_error.hpp"
 #include "solver/analysis/boundary.hpp"
-#include "solver/contact/contact_contributor.hpp"
+#include "solver/analysis/contact_contributor.hpp"
 
 namespace cushion::solver {
 
@@ -41,12 +41,13 @@ std::vector<Section> case_sections(const LoadedCase& loaded) {
 
 /// Frame and history row of the undeformed state at t = 0, from the first step's system.
 void write_initial_output(AnalysisContext& ctx, const System& system) {
+  ModelState& model = ctx.model();
   std::vector<PointOutput> points;
   Eigen::VectorXd f;
-  system.assembler->assemble(ctx.u, ctx.u, 0.0, ctx.state, f, nullptr, &points);
-  ctx.state.revert();
-  ctx.output.write_frame(make_frame(0.0, *system.assembler, points, ctx.u, f));
-  ctx.output.write_history(0.0, ctx.u, f, system.assembler->dofs());
+  system.assembler->assemble(model.u, model.u, 0.0, model.material, f, nullptr, &points);
+  ctx.output().write_frame(make_frame(0.0, *system.assembler, points, model.material, model.u, f));
+  model.material.revert();
+  ctx.output().write_history(0.0, model.u, f, system.assembler->dofs());
 }
 
 }  // namespace
@@ -77,7 +78,7 @@ RunSummary run_analysis(const LoadedCase& loaded, const RunOptions& options) {
   for (const StepSpec& s : spec.steps) steps.push_back(make_step(s));
   write_initial_output(ctx, ctx.system(constrained_mask(loaded.mesh, spec.steps.front())));
   for (auto& step : steps) {
-    if (ctx.progress) *ctx.progress << "step '" << step->spec().name << "'" << std::endl;
+    ctx.report_progress("step '" + step->spec().name + "'");
     step->run(ctx);
     log.flush();
   }
@@ -97,7 +98,7 @@ RunSummary run_analysis(const LoadedCase& loaded, const RunOptions& options) {
     if (!s->linear->method().empty()) summary.linear_method = s->linear->method();
   }
   summary.steps = static_cast<int>(steps.size());
-  summary.stats = ctx.stats;
+  summary.stats = ctx.stats();
   summary.threads = threads;
   summary.wall_time = ctx.elapsed();
   summary.peak_memory_mb = peak_memory_mb();

@@ -1,5 +1,7 @@
 #include "solver/analysis/analysis_context.hpp"
 
+#include "solver/analysis/contact_contributor.hpp"
+
 namespace cushion::solver {
 
 void TimedLinearSolver::factorize(const Eigen::SparseMatrix<double>& A) {
@@ -11,24 +13,42 @@ Eigen::VectorXd TimedLinearSolver::solve(const Eigen::VectorXd& b) {
   return timed(stats_.solve_time, [&] { return inner_->solve(b); });
 }
 
-AnalysisContext::AnalysisContext(const mesh::Mesh& mesh_, const CaseSpec& spec_, std::vector<Section> sections,
-                                 LinearSolverKind linear_kind, unsigned threads, AnalysisOutput& output_,
-                                 std::ostream& log_, std::ostream* progress_)
-    : mesh(mesh_), spec(spec_), output(output_), log(log_), progress(progress_),
-      u(Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(mesh_.num_nodes()))), f_int(u),
-      constrained(u.size(), false), sections_(std::move(sections)), linear_kind_(linear_kind), threads_(threads),
-      start_(std::chrono::steady_clock::now()) {}
+AnalysisContext::AnalysisContext(const mesh::Mesh& mesh, const CaseSpec& spec, std::vector<Section> sections,
+                                 LinearSolverKind linear_kind, unsigned threads, AnalysisOutput& output,
+                                 std::ostream& log, std::ostream* progress)
+    : mesh_(mesh), spec_(spec), output_(output), log_(log), progress_(progress), sections_(std::move(sections)),
+      linear_kind_(linear_kind), threads_(threads), start_(std::chrono::steady_clock::now()) {
+  model_.u = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(mesh.num_nodes()));
+  model_.f_int = model_.u;
+  model_.constrained.assign(model_.u.size(), false);
+}
+
+void AnalysisContext::report_progress(const std::string& line) {
+  if (progress_) *progress_ << line << std::endl;
+}
 
 System& AnalysisContext::system(const std::vector<bool>& mask) {
   for (auto& s : systems_)
     if (s->constrained == mask) return *s;
   auto s = std::make_unique<System>();
   s->constrained = mask;
-  s->assembler = std::make_unique<Assembler>(mesh, sections_, DofMap(mesh.num_nodes(), mask), AssemblyOptions{threads_});
-  s->linear = std::make_unique<TimedLinearSolver>(make_linear_solver(linear_kind_), stats);
-  if (systems_.empty()) state = s->assembler->make_state_store();  // same layout for every system
+  s->assembler =
+      std::make_unique<Assembler>(mesh_, sections_, DofMap(mesh_.num_nodes(), mask), AssemblyOptions{threads_});
+  s->linear = std::make_unique<TimedLinearSolver>(make_linear_solver(linear_kind_), stats_);
+  if (systems_.empty()) model_.material = s->assembler->make_state_store();  // same layout for every system
   systems_.push_back(std::move(s));
   return *systems_.back();
+}
+
+std::shared_ptr<ContactContributor> AnalysisContext::contact(const ContactSpec& spec) {
+  auto& slot = contacts_[spec.name];
+  if (!slot) slot = std::make_shared<ContactContributor>(spec, *this);
+  return slot;
+}
+
+const ContactContributor* AnalysisContext::find_contact(const std::string& name) const {
+  const auto it = contacts_.find(name);
+  return it == contacts_.end() ? nullptr : it->second.get();
 }
 
 double AnalysisContext::elapsed() const {

@@ -1,23 +1,24 @@
 #pragma once
 /// What the steps of an analysis share and carry from one step to the next: the model state
 /// (displacements, reactions, material state, total time), one assembler + linear solver per
-/// distinct set of constrained DOFs, the output, the log and the cost counters.
+/// distinct set of constrained DOFs, the contacts, the output, the log and the cost counters.
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <memory>
 #include <ostream>
+#include <string>
 #include <vector>
 
 #include "solver/analysis/analysis_output.hpp"
 #include "solver/assembler.hpp"
-#include "solver/case/case_spec.hpp"
+#include "solver/case/case_spec.hpp"  // also ContactSpec
 #include "solver/linear_solver.hpp"
 
 namespace cushion::solver {
 
-class ResidualContributor;  // step.hpp
+class ContactContributor;  // contact_contributor.hpp
 
 /// Cost counters of a run (times are wall-clock seconds).
 struct SolverStats {
@@ -55,46 +56,73 @@ struct System {
   std::unique_ptr<LinearSolver> linear;  ///< a TimedLinearSolver
 };
 
+/// The model state carried from step to step: the end of the last converged increment. Steps read
+/// it at their start and advance it; a steady_state step (a linear perturbation) leaves it unchanged.
+struct ModelState {
+  Eigen::VectorXd u;              ///< full displacements [mm]
+  Eigen::VectorXd f_int;          ///< full internal forces [N] = reactions at constrained DOFs
+  std::vector<bool> constrained;  ///< constrained DOFs of the last step (all false before the first)
+  StateStore material;            ///< committed material state of every point
+  double time = 0.0;              ///< total time [s]
+  /// Full velocities [mm/s] at the end of a dynamic step, for a directly following dynamic step
+  /// (steady_state steps leave them; static and visco steps end at rest: empty).
+  Eigen::VectorXd v;
+};
+
 /// Shared state of a running analysis. Owned by run_analysis; steps read and advance it.
+///  - inputs and sinks fixed for the run: mesh(), spec(), output(), log(), progress();
+///  - the carried model state: model();
+///  - what persists across steps besides it: the Systems (system()), the contacts (contact()), the
+///    cost counters (stats()).
 class AnalysisContext {
  public:
-  /// `mesh` and `spec` must outlive the context. Sections: one per material (here: the case's).
+  /// `mesh`, `spec`, `output`, `log` and `*progress` must outlive the context. Sections: one per
+  /// material (here: the case's).
   AnalysisContext(const mesh::Mesh& mesh, const CaseSpec& spec, std::vector<Section> sections,
                   LinearSolverKind linear_kind, unsigned threads, AnalysisOutput& output, std::ostream& log,
                   std::ostream* progress);
+
+  const mesh::Mesh& mesh() const { return mesh_; }  ///< the model's mesh (reference, mm)
+  const CaseSpec& spec() const { return spec_; }     ///< the case being run
+  AnalysisOutput& output() { return output_; }       ///< frames and history.csv
+  std::ostream& log() { return log_; }               ///< per-iteration log (solver.log)
+  std::ostream* progress() { return progress_; }     ///< one line per increment, or nullptr (quiet)
+  /// Writes one line to the progress stream, if any (flushed).
+  void report_progress(const std::string& line);
+
+  ModelState& model() { return model_; }              ///< the carried model state
+  const ModelState& model() const { return model_; }  ///< the carried model state
+
+  SolverStats& stats() { return stats_; }              ///< cost counters of the run
+  const SolverStats& stats() const { return stats_; }  ///< cost counters of the run
 
   /// The System of a constraint set (built on first use; the material state is shared by all).
   System& system(const std::vector<bool>& constrained);
   /// All systems built so far (for the summary).
   const std::vector<std::unique_ptr<System>>& systems() const { return systems_; }
 
-  const mesh::Mesh& mesh;
-  const CaseSpec& spec;
-  AnalysisOutput& output;
-  std::ostream& log;        ///< per-iteration log (solver.log)
-  std::ostream* progress;   ///< one line per increment, or nullptr (quiet)
-  SolverStats stats;
-
-  // --- the model state carried from step to step (end of the last converged increment) ---
-  Eigen::VectorXd u;                 ///< full displacements [mm]
-  Eigen::VectorXd f_int;             ///< full internal forces [N] = reactions at constrained DOFs
-  std::vector<bool> constrained;     ///< constrained DOFs of the last step (all false before the first)
-  StateStore state;                  ///< committed material state of every point
-  double time = 0.0;                 ///< total time [s]
-  /// Full velocities [mm/s] at the end of a dynamic step, for a directly following dynamic step
-  /// (steady_state steps leave them; static and visco steps end at rest: empty).
-  Eigen::VectorXd v;
-  /// Extra equilibrium terms that persist from step to step (e.g. contact, by "contact:<name>").
-  std::map<std::string, std::shared_ptr<ResidualContributor>> contributors;
+  /// The contact spec.name, created from `spec` (its first step) on first use and kept for the
+  /// later steps, so its multipliers and stick points carry over.
+  std::shared_ptr<ContactContributor> contact(const ContactSpec& spec);
+  /// The contact `name` if a step has used it, else nullptr.
+  const ContactContributor* find_contact(const std::string& name) const;
 
   /// Seconds since the context was created.
   double elapsed() const;
 
  private:
+  const mesh::Mesh& mesh_;
+  const CaseSpec& spec_;
+  AnalysisOutput& output_;
+  std::ostream& log_;
+  std::ostream* progress_;
+  ModelState model_;
+  SolverStats stats_;
   std::vector<Section> sections_;
   LinearSolverKind linear_kind_;
   unsigned threads_;
   std::vector<std::unique_ptr<System>> systems_;
+  std::map<std::string, std::shared_ptr<ContactContributor>> contacts_;  ///< by contact name
   std::chrono::steady_clock::time_point start_;
 };
 

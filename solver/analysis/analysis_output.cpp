@@ -1,25 +1,22 @@
 #include "solver/analysis/analysis_output.hpp"
 
 #include <algorithm>
-
-#include "material/viscoelastic.hpp"
+#include <span>
 
 namespace cushion::solver {
 
 namespace {
 
-/// Frobenius norm of the viscous part of the Cauchy stress at one point [MPa].
-double viscous_norm(const material::Material* m, const PointOutput& p) {
-  const auto* visco = dynamic_cast<const material::Viscoelastic*>(m);
-  if (!visco) return 0.0;
-  const Vec6 S_inf = visco->long_term_base().evaluate(p.F).S;
-  return cauchy_from_pk2(p.F, from_voigt_stress(p.S - S_inf)).norm();
+/// Frobenius norm of the viscous part of the Cauchy stress at one point [MPa] (Material::viscous_stress
+/// of the point's trial state).
+double viscous_norm(const material::Material& m, const PointOutput& p, std::span<const double> state) {
+  return cauchy_from_pk2(p.F, from_voigt_stress(m.viscous_stress(p.F, state))).norm();
 }
 
 }  // namespace
 
 FrameData make_frame(double time, const Assembler& assembler, const std::vector<PointOutput>& points,
-                     const Eigen::VectorXd& u, const Eigen::VectorXd& f_int) {
+                     const StateStore& state, const Eigen::VectorXd& u, const Eigen::VectorXd& f_int) {
   const mesh::Mesh& mesh = assembler.mesh();
   const DofMap& dofs = assembler.dofs();
   FrameData frame;
@@ -39,16 +36,18 @@ FrameData make_frame(double time, const Assembler& assembler, const std::vector<
   for (std::size_t e = 0; e < ne; ++e) {
     const int section = assembler.section_of(static_cast<int>(e));
     if (section < 0) continue;  // element without material: zero stress, F = I
-    const material::Material* m = assembler.sections()[section].material.get();
+    const material::Material& m = *assembler.sections()[section].material;
     const std::size_t first = assembler.point_offset(static_cast<int>(e));
     const int n = num_points(mesh.elements[e].type);
+    const std::span<const double> element_state = state.new_state(static_cast<int>(e));
+    const std::size_t state_size = m.state_size();
     Mat3 sigma = Mat3::Zero(), F = Mat3::Zero();
     double visc = 0.0, V = 0.0;
     for (int q = 0; q < n; ++q) {
       const PointOutput& p = points[first + q];
       sigma += p.dV0 * from_voigt_stress(p.sigma);
       F += p.dV0 * p.F;
-      visc += p.dV0 * viscous_norm(m, p);
+      visc += p.dV0 * viscous_norm(m, p, element_state.subspan(static_cast<std::size_t>(q) * state_size, state_size));
       V += p.dV0;
     }
     frame.cauchy_stress[e] = sigma / V;

@@ -19,11 +19,12 @@ namespace cushion::solver {
 
 /// One frame from a converged state: displacements u [mm] (full), reaction forces [N] = f_int at
 /// the constrained DOFs of `assembler` (zero elsewhere), and per element the reference-volume
-/// average over its quadrature points (`points` from Assembler::assemble at u) of the Cauchy stress
-/// [MPa], of F [-] and of the Frobenius norm of the viscous Cauchy stress F (S - S_inf(F)) F^T / J
-/// [MPa] (S_inf: long-term base stress of a Viscoelastic material; 0 for elastic materials).
+/// average over its quadrature points (`points` and the trial state in `state` from
+/// Assembler::assemble at u) of the Cauchy stress [MPa], of F [-] and of the Frobenius norm of the
+/// viscous Cauchy stress F S_visc F^T / J [MPa] (S_visc: Material::viscous_stress, e.g. S - S_inf(F)
+/// of a Prony material, also under effects; 0 for elastic materials).
 FrameData make_frame(double time, const Assembler& assembler, const std::vector<PointOutput>& points,
-                     const Eigen::VectorXd& u, const Eigen::VectorXd& f_int);
+                     const StateStore& state, const Eigen::VectorXd& u, const Eigen::VectorXd& f_int);
 
 /// History values in the order of history_columns(spec): Ui = mean displacement of the set [mm],
 /// RFi = sum over the set of the reactions f_int at constrained DOFs [N] (0 where free).

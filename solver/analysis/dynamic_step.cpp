@@ -10,7 +10,7 @@
 #include "io/text_support.hpp"
 #include "solver/analysis/boundary.hpp"
 #include "solver/analysis/increment_loop.hpp"
-#include "solver/contact/contact_contributor.hpp"
+#include "solver/analysis/contact_contributor.hpp"
 #include "solver/dof_map.hpp"
 #include "solver/dynamics/linearised_system.hpp"
 #include "solver/dynamics/newmark.hpp"
@@ -42,10 +42,10 @@ struct EnergyAccount {
 /// Increments of a dynamic step: Newmark kinematics, inertia and damping term, energies.
 class DynamicStepper final : public IncrementStepper {
  public:
-  DynamicStepper(AnalysisContext& ctx, const StepSpec& step, const StepBoundary& boundary,
+  DynamicStepper(ModelState& model, const StepSpec& step, const StepBoundary& boundary,
                  const dynamics::NewmarkIntegrator& newmark, const Assembler& assembler, Kinematics start,
                  const Eigen::VectorXd& f_int_start, const Eigen::VectorXd& hht_force_start, HistoryWriter& energy_file)
-      : ctx_(ctx), step_(step), boundary_(boundary), newmark_(newmark), assembler_(assembler),
+      : model_(model), step_(step), boundary_(boundary), newmark_(newmark), assembler_(assembler),
         k_(std::move(start)), f_int_n_(f_int_start), hht_force_(hht_force_start), energy_file_(energy_file) {
     c_n_ = newmark_.damping_force(k_.v);
     g_n_ = f_int_n_ + newmark_.inertia_force(k_.a) + c_n_;
@@ -62,7 +62,7 @@ class DynamicStepper final : public IncrementStepper {
     a.dt_material = dt;
     for (int d : dofs.constrained_dofs())
       a.prescribed_increment = std::max(a.prescribed_increment, std::abs(p_.u(d) - k_.u(d)));
-    a.problem = std::make_unique<EquilibriumProblem>(assembler_, ctx_.state, k_.u, p_.u,
+    a.problem = std::make_unique<EquilibriumProblem>(assembler_, model_.material, k_.u, p_.u,
                                                      Eigen::VectorXd::Zero(k_.u.size()), dt);
     a.problem->add_term(newmark_.inertia_term(*update_));
     a.x = dofs.gather_free(update_->predictor());
@@ -86,19 +86,19 @@ class DynamicStepper final : public IncrementStepper {
   void committed() override {
     energy_.add(next_.u - k_.u, f_int_n_, f_int_new_, c_n_, c_new_, g_n_, g_new_);
     energy_.kinetic = 0.5 * next_.v.dot(newmark_.inertia_force(next_.v));
-    energy_file_.write_row(ctx_.time, energy_.row());
+    energy_file_.write_row(model_.time, energy_.row());
     f_int_n_ = f_int_new_, c_n_ = c_new_, g_n_ = g_new_;
     update_.reset();  // refers to k_, p_ and hht_force_
     if (newmark_.parameters().alpha != 0.0) hht_force_ = newmark_.next_start_force(hht_force_, next_.a);
     k_ = std::move(next_);
-    ctx_.v = k_.v;
+    model_.v = k_.v;
   }
 
   std::string progress_note() const override { return "  KE " + fmt("%.3e", energy_.kinetic) + " mJ"; }
   const EnergyAccount& energy() const { return energy_; }
 
  private:
-  AnalysisContext& ctx_;
+  ModelState& model_;
   const StepSpec& step_;
   const StepBoundary& boundary_;
   const dynamics::NewmarkIntegrator& newmark_;
@@ -119,20 +119,21 @@ std::vector<std::string> energy_columns() {
 
 void DynamicStep::run(AnalysisContext& ctx) {
   const DynamicSpec& dyn = spec_.dynamic;
-  const std::vector<bool> mask = constrained_mask(ctx.mesh, spec_);
+  const std::vector<bool> mask = constrained_mask(ctx.mesh(), spec_);
   System& system = ctx.system(mask);
+  ModelState& model = ctx.model();
   const Assembler& assembler = *system.assembler;
   const DofMap& dofs = assembler.dofs();
-  const double t0 = ctx.time, period = spec_.period;
-  const Eigen::Index n = ctx.u.size();
+  const double t0 = model.time, period = spec_.period;
+  const Eigen::Index n = model.u.size();
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
 
   // Mass and Rayleigh damping about the start state (long-term tangent, relaxed stress).
   std::unique_ptr<dynamics::LinearisedSystem> lin;
   try {
     lin = std::make_unique<dynamics::LinearisedSystem>(
-        ctx.mesh, assembler.sections(),
-        dynamics::base_point_states(assembler, ctx.state, ctx.u, BaseStress::relaxed), ctx.u);
+        ctx.mesh(), assembler.sections(),
+        dynamics::base_point_states(assembler, model.material, model.u, BaseStress::relaxed), model.u);
   } catch (const std::runtime_error& e) {
     throw AnalysisError("step '" + spec_.name + "': cannot build the mass and damping matrices: " + e.what());
   }
@@ -142,22 +143,22 @@ void DynamicStep::run(AnalysisContext& ctx) {
 
   std::vector<std::shared_ptr<ResidualContributor>> contributors;
   for (auto& c : step_contacts(ctx, spec_, dofs)) contributors.push_back(std::move(c));
-  const StepBoundary boundary(ctx.mesh, spec_, ctx.spec.amplitudes, t0, ctx.u);
+  const StepBoundary boundary(ctx.mesh(), spec_, ctx.spec().amplitudes, t0, model.u);
 
   // Start kinematics: velocity carried from a preceding dynamic step or zero, acceleration from
   // equilibrium at the start.
-  Kinematics k{ctx.u, ctx.v.size() == n ? ctx.v : zero, zero};
+  Kinematics k{model.u, model.v.size() == n ? model.v : zero, zero};
   boundary.apply_motion(0.0, k.u, k.v, k.a);
-  k.u = ctx.u;  // a jump of a prescribed value at the step start is applied by the first increment
+  k.u = model.u;  // a jump of a prescribed value at the step start is applied by the first increment
   Eigen::VectorXd f_int_n, hht_force;
   {
-    EquilibriumProblem start(assembler, ctx.state, ctx.u, ctx.u, zero, 0.0);
+    EquilibriumProblem start(assembler, model.material, model.u, model.u, zero, 0.0);
     const IncrementInfo info{&spec_, t0, t0, 0.0};
     for (auto& c : contributors) c->begin_increment(info, start);
     Eigen::VectorXd r;
-    ++ctx.stats.assemblies;
-    const ProblemEvaluation ev = start.evaluate(dofs.gather_free(ctx.u), r, false);
-    ctx.state.revert();
+    ++ctx.stats().assemblies;
+    const ProblemEvaluation ev = start.evaluate(dofs.gather_free(model.u), r, false);
+    model.material.revert();
     for (auto& c : contributors) c->revert();
     if (ev.status == material::Status::failed)
       throw AnalysisError("step '" + spec_.name + "': material failure at the start state: " + ev.message);
@@ -169,22 +170,22 @@ void DynamicStep::run(AnalysisContext& ctx) {
       throw AnalysisError("step '" + spec_.name + "': " + e.what());
     }
   }
-  const std::filesystem::path dir = ctx.output.pvd_file().parent_path();
+  const std::filesystem::path dir = ctx.output().pvd_file().parent_path();
   HistoryWriter energy_file(dir / (spec_.name + "_energy.csv"), energy_columns(),
                             {"step " + spec_.name + ": energies since t = " + fmt("%.9g", t0) +
                              " s [mJ = N mm]; balance = kinetic + internal + damping - external - kinetic at start"});
-  DynamicStepper stepper(ctx, spec_, boundary, newmark, assembler, std::move(k), f_int_n, hht_force, energy_file);
+  DynamicStepper stepper(model, spec_, boundary, newmark, assembler, std::move(k), f_int_n, hht_force, energy_file);
   energy_file.write_row(t0, stepper.energy().row());
-  ctx.log << "step '" << spec_.name << "' (dynamic, Newmark gamma = " << dyn.gamma << ", beta = " << dyn.beta
-          << ", HHT alpha = " << dyn.hht_alpha << ", Rayleigh alpha = " << dyn.damping.rayleigh_alpha
-          << " 1/s, beta = " << dyn.damping.rayleigh_beta << " s, " << period << " s, " << dofs.num_free()
-          << " free DOFs, " << (spec_.increment.fixed ? "fixed" : "automatic")
+  ctx.log() << "step '" << spec_.name << "' (dynamic, Newmark gamma = " << dyn.gamma << ", beta = " << dyn.beta
+            << ", HHT alpha = " << dyn.hht_alpha << ", Rayleigh alpha = " << dyn.damping.rayleigh_alpha
+            << " 1/s, beta = " << dyn.damping.rayleigh_beta << " s, " << period << " s, " << dofs.num_free()
+            << " free DOFs, " << (spec_.increment.fixed ? "fixed" : "automatic")
           << " increments) from t = " << t0 << " s, start kinetic energy " << stepper.energy().kinetic << " mJ\n";
 
   const IncrementControl control =
       run_increment_loop(ctx, spec_, system, contributors, boundary.corner_times(), stepper);
-  ctx.constrained = mask;
-  ctx.log << "step '" << spec_.name << "' done: " << control.increments() << " increments, " << control.cutbacks()
+  model.constrained = mask;
+  ctx.log() << "step '" << spec_.name << "' done: " << control.increments() << " increments, " << control.cutbacks()
           << " cut-backs, kinetic energy " << stepper.energy().kinetic << " mJ, energy balance "
           << stepper.energy().balance() << " mJ\n";
 }

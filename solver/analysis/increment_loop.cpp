@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <functional>
 
-#include "solver/contact/contact_contributor.hpp"
 #include "solver/output/interrupt.hpp"
 
 namespace cushion::solver {
@@ -24,10 +23,9 @@ std::vector<double> frame_times(const StepSpec& step) {
   return times;
 }
 
-/// Contact contributors extrapolate from the last converged indenter position while on.
+/// Switches every contributor's predictor mode (ResidualContributor::set_predicting).
 void set_predicting(const std::vector<std::shared_ptr<ResidualContributor>>& contributors, bool on) {
-  for (const auto& c : contributors)
-    if (auto* contact = dynamic_cast<ContactContributor*>(c.get())) contact->set_predicting(on);
+  for (const auto& c : contributors) c->set_predicting(on);
 }
 
 /// Predictor (optional) then Newton for one attempt; x: in: start iterate, out: last iterate.
@@ -55,11 +53,12 @@ NewtonResult solve_attempt(IncrementAttempt& attempt, LinearSolver& linear, Newt
     set_predicting(contributors, true);
     try {
       // The predictor's element loop counts as assembly, its factorization as factorization.
-      const double linear_before = ctx.stats.factorization_time + ctx.stats.solve_time;
+      SolverStats& stats = ctx.stats();
+      const double linear_before = stats.factorization_time + stats.solve_time;
       double total = 0.0;
       const ProblemEvaluation ev = timed(total, [&] { return problem.predict(x, linear, reuse); });
-      ++ctx.stats.assemblies;
-      ctx.stats.assembly_time += total - (ctx.stats.factorization_time + ctx.stats.solve_time - linear_before);
+      ++stats.assemblies;
+      stats.assembly_time += total - (stats.factorization_time + stats.solve_time - linear_before);
       if (ev.status == material::Status::failed)
         return fail(NewtonOutcome::failed, "material failure in the predictor: " + ev.message);
     } catch (const SingularMatrixError& e) {
@@ -68,8 +67,8 @@ NewtonResult solve_attempt(IncrementAttempt& attempt, LinearSolver& linear, Newt
   }
   options.prescribed_increment =
       attempt.prescribed_increment + (x.size() ? (x - x_start).cwiseAbs().maxCoeff() : 0.0);
-  TimedProblem timed_problem(problem, ctx.stats);
-  auto log = [&](const NewtonIterate& it) { ctx.log << "    " << format_iterate(it) << "\n"; };
+  TimedProblem timed_problem(problem, ctx.stats());
+  auto log = [&](const NewtonIterate& it) { ctx.log() << "    " << format_iterate(it) << "\n"; };
   // solve_newton reports a singular tangent as an outcome and drops `factor` on any failure.
   result = solve_newton(timed_problem, linear, x, options, log, &factor);
   // Augmented-Lagrangian (Uzawa) updates of the contributors: solve again until none changes.
@@ -98,18 +97,21 @@ IncrementControl run_increment_loop(AnalysisContext& ctx, const StepSpec& step, 
                                     const std::vector<double>& corner_times, IncrementStepper& stepper) {
   const Assembler& assembler = *system.assembler;
   const DofMap& dofs = assembler.dofs();
-  const double t0 = ctx.time, period = step.period;
+  ModelState& model = ctx.model();
+  SolverStats& stats = ctx.stats();
+  const SolverSpec& settings = ctx.spec().solver;
+  const double t0 = model.time, period = step.period;
   const std::string& name = step.name;
   auto where = [&](double t) { return "step '" + name + "' at t = " + fmt("%.6g", t0 + t) + " s: "; };
   auto frames_so_far = [&] {
-    return "; frames written so far are complete (up to t = " + fmt("%.6g", ctx.output.last_frame_time()) + " s)";
+    return "; frames written so far are complete (up to t = " + fmt("%.6g", ctx.output().last_frame_time()) + " s)";
   };
 
   // Increments end exactly on amplitude corners and frame times.
   const std::vector<double> frames = frame_times(step);
   std::vector<double> targets = corner_times;
   targets.insert(targets.end(), frames.begin(), frames.end());
-  IncrementControl control(increment_limits(step, ctx.spec.solver), targets);
+  IncrementControl control(increment_limits(step, settings), targets);
   auto frame_due = [&](double t_step, int increment) {
     if (t_step >= period) return true;
     if (!step.output.frames_every) return increment % step.output.frame_every_increments == 0;
@@ -117,10 +119,10 @@ IncrementControl run_increment_loop(AnalysisContext& ctx, const StepSpec& step, 
   };
 
   NewtonOptions options;
-  options.residual_tolerance = ctx.spec.solver.residual_tolerance;
-  options.correction_tolerance = ctx.spec.solver.correction_tolerance;
-  options.max_iterations = ctx.spec.solver.max_iterations;
-  options.tangent_reuse = {ctx.spec.solver.tangent_reuse, ctx.spec.solver.max_contraction};
+  options.residual_tolerance = settings.residual_tolerance;
+  options.correction_tolerance = settings.correction_tolerance;
+  options.max_iterations = settings.max_iterations;
+  options.tangent_reuse = {settings.tangent_reuse, settings.max_contraction};
   TangentFactor factor;  // what system.linear holds, kept across the increments of this step
   double q_sum = 0.0;    // time-averaged force of the step (ABAQUS q~): mean q of converged increments
   std::vector<PointOutput> points;
@@ -132,7 +134,7 @@ IncrementControl run_increment_loop(AnalysisContext& ctx, const StepSpec& step, 
     EquilibriumProblem& problem = *attempt.problem;
     const IncrementInfo info{&step, t0 + t_begin, t0 + t_end, attempt.dt_material};
     for (auto& c : contributors) c->begin_increment(info, problem);
-    ctx.log << "  increment " << control.increments() + 1 << ": t = " << t0 + t_end << " s, dt = " << dt << " s\n";
+    ctx.log() << "  increment " << control.increments() + 1 << ": t = " << t0 + t_end << " s, dt = " << dt << " s\n";
     options.reference_force = control.increments() ? q_sum / control.increments() : 0.0;
     std::string contributor_failure;
     const NewtonResult last =
@@ -140,17 +142,17 @@ IncrementControl run_increment_loop(AnalysisContext& ctx, const StepSpec& step, 
     const double residual = last.history.empty() ? NAN : last.history.back().residual_max;
 
     if (!last.converged()) {
-      ctx.state.revert();
+      model.material.revert();
       for (auto& c : contributors) c->revert();
       if (!contributor_failure.empty()) throw AnalysisError(where(t_end) + contributor_failure + frames_so_far());
-      ++ctx.stats.cutbacks;
+      ++stats.cutbacks;
       const std::string reason = to_string(last.outcome) + (last.message.empty() ? "" : ": " + last.message);
       const bool retry = control.cut_back(last.dt_factor);
       const std::string line = "  " + name + ": attempt t = " + fmt("%.6g", t0 + t_end) + " s, dt = " +
                                fmt("%.4g", dt) + " s failed (" + reason + ")" +
                                (retry ? "; cut back to dt = " + fmt("%.4g", control.increment()) + " s" : "");
-      ctx.log << line << "\n";
-      if (ctx.progress) *ctx.progress << line << std::endl;
+      ctx.log() << line << "\n";
+      ctx.report_progress(line);
       if (retry) continue;
       const IncrementLimits& l = control.limits();
       const bool too_small = control.increment() < l.min * (1.0 - 1e-12);
@@ -170,36 +172,36 @@ IncrementControl run_increment_loop(AnalysisContext& ctx, const StepSpec& step, 
     const Eigen::VectorXd support = stepper.converged(problem);
     const bool interrupted = interrupt_requested();
     if (frame_due(t_end, control.increments() + 1) || interrupted) {
-      ++ctx.stats.assemblies;
-      timed(ctx.stats.assembly_time, [&] {
-        assembler.assemble(ctx.u, problem.u(), attempt.dt_material, ctx.state, f_scratch, nullptr, &points);
+      ++stats.assemblies;
+      timed(stats.assembly_time, [&] {
+        assembler.assemble(model.u, problem.u(), attempt.dt_material, model.material, f_scratch, nullptr, &points);
       });
-      FrameData frame = make_frame(t0 + t_end, assembler, points, problem.u(), support);
+      FrameData frame = make_frame(t0 + t_end, assembler, points, model.material, problem.u(), support);
       for (auto& c : contributors) c->add_frame_fields(frame);
       stepper.add_frame_fields(frame);
-      ctx.output.write_frame(std::move(frame));
+      ctx.output().write_frame(std::move(frame));
     }
-    ctx.state.commit();
+    model.material.commit();
     for (auto& c : contributors) c->commit();
-    ctx.u = problem.u();
-    ctx.f_int = problem.f_int();
-    ctx.time = t0 + t_end;
-    ctx.output.write_history(ctx.time, ctx.u, support, dofs);
+    model.u = problem.u();
+    model.f_int = problem.f_int();
+    model.time = t0 + t_end;
+    ctx.output().write_history(model.time, model.u, support, dofs);
     stepper.committed();
-    ++ctx.stats.increments;
-    ctx.stats.iterations += last.iterations;
+    ++stats.increments;
+    stats.iterations += last.iterations;
     q_sum += last.history.back().force_scale;
-    if (ctx.progress) {
+    if (ctx.progress()) {
       char line[256];
       std::snprintf(line, sizeof line, "%-10s inc %4d  t = %-10.6g s  dt = %-9.4g s  iter %2d  |r|max %.2e N",
-                    name.c_str(), control.increments() + 1, ctx.time, dt, last.iterations, residual);
-      *ctx.progress << line << stepper.progress_note() << std::endl;
+                    name.c_str(), control.increments() + 1, model.time, dt, last.iterations, residual);
+      ctx.report_progress(line + stepper.progress_note());
     }
     if (!control.accept(t_end, last.iterations, last.dt_factor))
       throw AnalysisError(where(t_end) + "more than " +
                           std::to_string(control.limits().max_increments) +
                           " increments needed (increment.max_increments); frames written so far are complete");
-    if (interrupted) throw Interrupted(ctx.output.last_frame_time());
+    if (interrupted) throw Interrupted(ctx.output().last_frame_time());
   }
   return control;
 }

@@ -8,7 +8,7 @@
 #include "solver/analysis/increment_loop.hpp"
 #include "solver/analysis/steady_state_step.hpp"
 #include "solver/analysis/step.hpp"
-#include "solver/contact/contact_contributor.hpp"
+#include "solver/analysis/contact_contributor.hpp"
 
 namespace cushion::solver {
 
@@ -17,34 +17,35 @@ namespace {
 /// Increments of a static or visco step.
 class QuasiStaticStepper final : public IncrementStepper {
  public:
-  QuasiStaticStepper(AnalysisContext& ctx, const StepSpec& step, const StepBoundary& boundary, const DofMap& dofs,
+  QuasiStaticStepper(ModelState& model, const StepSpec& step, const StepBoundary& boundary, const DofMap& dofs,
                      const Assembler& assembler, const std::vector<bool>& mask)
-      : ctx_(ctx), step_(step), boundary_(boundary), dofs_(dofs), assembler_(assembler),
-        f_ext_(Eigen::VectorXd::Zero(ctx.u.size())) {
+      : model_(model), step_(step), boundary_(boundary), dofs_(dofs), assembler_(assembler),
+        f_ext_(Eigen::VectorXd::Zero(model.u.size())) {
     // DOFs constrained in the previous step and free now: their reaction becomes an external force
     // ramped linearly to zero over the step (ABAQUS behaviour when a boundary condition is removed).
     for (std::size_t d = 0; d < mask.size(); ++d)
-      if (ctx.constrained[d] && !mask[d]) released_.emplace_back(static_cast<int>(d), ctx.f_int(d));
+      if (model.constrained[d] && !mask[d]) released_.emplace_back(static_cast<int>(d), model.f_int(d));
   }
 
   IncrementAttempt begin_attempt(double t_begin, double t_end) override {
     const bool visco = step_.type == StepSpec::Type::visco;
     IncrementAttempt a;
     a.dt_material = visco ? t_end - t_begin : (step_.long_term ? long_term_dt : 0.0);
-    Eigen::VectorXd u_new = ctx_.u;
+    Eigen::VectorXd u_new = model_.u;
     boundary_.apply(t_end, u_new);
     for (int d : dofs_.constrained_dofs())
-      a.prescribed_increment = std::max(a.prescribed_increment, std::abs(u_new(d) - ctx_.u(d)));
+      a.prescribed_increment = std::max(a.prescribed_increment, std::abs(u_new(d) - model_.u(d)));
     for (const auto& [d, reaction] : released_) f_ext_(d) = reaction * (1.0 - t_end / step_.period);
-    a.problem = std::make_unique<EquilibriumProblem>(assembler_, ctx_.state, ctx_.u, u_new, f_ext_, a.dt_material);
-    a.x = dofs_.gather_free(ctx_.u);
+    a.problem =
+        std::make_unique<EquilibriumProblem>(assembler_, model_.material, model_.u, u_new, f_ext_, a.dt_material);
+    a.x = dofs_.gather_free(model_.u);
     a.predict = true;
     return a;
   }
   Eigen::VectorXd converged(const EquilibriumProblem& problem) override { return problem.f_int(); }
 
  private:
-  AnalysisContext& ctx_;
+  ModelState& model_;
   const StepSpec& step_;
   const StepBoundary& boundary_;
   const DofMap& dofs_;
@@ -56,22 +57,23 @@ class QuasiStaticStepper final : public IncrementStepper {
 }  // namespace
 
 void QuasiStaticStep::run(AnalysisContext& ctx) {
-  const std::vector<bool> mask = constrained_mask(ctx.mesh, spec_);
+  const std::vector<bool> mask = constrained_mask(ctx.mesh(), spec_);
   System& system = ctx.system(mask);
+  ModelState& model = ctx.model();
   const DofMap& dofs = system.assembler->dofs();
-  const StepBoundary boundary(ctx.mesh, spec_, ctx.spec.amplitudes, ctx.time, ctx.u);
+  const StepBoundary boundary(ctx.mesh(), spec_, ctx.spec().amplitudes, model.time, model.u);
   std::vector<std::shared_ptr<ResidualContributor>> contributors = contributors_;
   for (auto& c : step_contacts(ctx, spec_, dofs)) contributors.push_back(std::move(c));
   const bool visco = spec_.type == StepSpec::Type::visco;
-  ctx.log << "step '" << spec_.name << "' (" << (visco ? "visco" : spec_.long_term ? "static, long term" : "static")
+  ctx.log() << "step '" << spec_.name << "' (" << (visco ? "visco" : spec_.long_term ? "static, long term" : "static")
           << ", " << spec_.period << " s, " << dofs.num_free() << " free DOFs, "
-          << (ctx.spec.solver.tangent_reuse ? "modified" : "full") << " Newton) from t = " << ctx.time << " s\n";
+          << (ctx.spec().solver.tangent_reuse ? "modified" : "full") << " Newton) from t = " << model.time << " s\n";
 
-  QuasiStaticStepper stepper(ctx, spec_, boundary, dofs, *system.assembler, mask);
+  QuasiStaticStepper stepper(model, spec_, boundary, dofs, *system.assembler, mask);
   const IncrementControl control = run_increment_loop(ctx, spec_, system, contributors, boundary.corner_times(), stepper);
-  ctx.constrained = mask;
-  ctx.v.resize(0);  // a quasi-static step ends at rest
-  ctx.log << "step '" << spec_.name << "' done: " << control.increments() << " increments, " << control.cutbacks()
+  model.constrained = mask;
+  model.v.resize(0);  // a quasi-static step ends at rest
+  ctx.log() << "step '" << spec_.name << "' done: " << control.increments() << " increments, " << control.cutbacks()
           << " cut-backs\n";
 }
 

@@ -1,5 +1,6 @@
-// The steady-state sweep step: checks, linearisation about the carried state, frequencies on up to
-// 2 threads (one SteadyStateSolver, i.e. one complex LU, per thread), then the sweep CSV and frames.
+// The steady-state sweep step in four parts: resolve the excitation (checks, indenter roles, DOFs),
+// linearise about the carried state, sweep the frequencies on up to 2 threads (one SteadyStateSolver,
+// i.e. one complex LU, per thread), then write the sweep CSV and frames.
 #include "solver/analysis/steady_state_step.hpp"
 
 #include <algorithm>
@@ -10,7 +11,7 @@
 #include <thread>
 
 #include "io/input_error.hpp"
-#include "solver/contact/contact_contributor.hpp"
+#include "solver/analysis/contact_contributor.hpp"
 #include "solver/dynamics/contact_linearisation.hpp"
 #include "solver/dynamics/sweep.hpp"
 
@@ -22,11 +23,11 @@ using namespace dynamics;
 
 /// Nodes of a set named by a step entry; InputError "case: key.set: ..." if missing or empty.
 const std::vector<int>& set_nodes(const AnalysisContext& ctx, const std::string& set, const std::string& key) {
-  const auto it = ctx.mesh.node_sets.find(set);
-  if (it == ctx.mesh.node_sets.end())
-    throw InputError(ctx.spec.file.string() + ": " + key + ": set \"" + set + "\" does not exist in the mesh");
+  const auto it = ctx.mesh().node_sets.find(set);
+  if (it == ctx.mesh().node_sets.end())
+    throw InputError(ctx.spec().file.string() + ": " + key + ": set \"" + set + "\" does not exist in the mesh");
   if (it->second.empty())
-    throw InputError(ctx.spec.file.string() + ": " + key + ": set \"" + set + "\" has no nodes");
+    throw InputError(ctx.spec().file.string() + ": " + key + ": set \"" + set + "\" has no nodes");
   return it->second;
 }
 
@@ -34,6 +35,14 @@ std::vector<int> component_dofs(const std::vector<int>& nodes, int c) {
   std::vector<int> d;
   for (int n : nodes) d.push_back(DofMap::dof(n, c));
   return d;
+}
+
+/// The damping as the log and the CSV header state it.
+std::string describe_damping(const SteadyStateSpec& s) {
+  char text[160];
+  std::snprintf(text, sizeof text, "alpha = %.6g 1/s, beta = %.6g s, structural = %.6g", s.damping.rayleigh_alpha,
+                s.damping.rayleigh_beta, s.damping.structural);
+  return text;
 }
 
 /// A rigid indenter of the base state: its contact, appended DOF, role in the sweep.
@@ -49,20 +58,19 @@ struct Indenter {
 /// The contacts of the base state: those of the last static/visco step before `step` (in order).
 std::vector<Indenter> base_state_indenters(const AnalysisContext& ctx, const StepSpec& step) {
   const StepSpec* previous = nullptr;
-  for (const StepSpec& s : ctx.spec.steps) {
+  for (const StepSpec& s : ctx.spec().steps) {
     if (&s == &step) break;
     if (s.type != StepSpec::Type::steady_state) previous = &s;
   }
   std::vector<Indenter> out;
   if (!previous) return out;
   for (const ContactSpec& c : previous->contact) {
-    const auto it = ctx.contributors.find("contact:" + c.name);
-    const auto* contact = it == ctx.contributors.end() ? nullptr : dynamic_cast<const ContactContributor*>(it->second.get());
+    const ContactContributor* contact = ctx.find_contact(c.name);
     if (!contact) continue;
     Indenter ind;
     ind.name = c.name;
     ind.set = &contact->set();
-    ind.dof = static_cast<int>(3 * ctx.mesh.num_nodes() + out.size());
+    ind.dof = static_cast<int>(3 * ctx.mesh().num_nodes() + out.size());
     out.push_back(std::move(ind));
   }
   return out;
@@ -75,228 +83,330 @@ std::string names(const std::vector<Indenter>& list) {
   return s.empty() ? "none" : s;
 }
 
-}  // namespace
+/// What the step's keys resolve to against the base state (before anything is computed): the
+/// excited component, the indenters with their roles and frozen contact, the driven, held and
+/// measured DOFs (3 per node, then one per indenter) and the nominal geometry.
+struct SweepSetup {
+  std::string where;                ///< "<case file>: <step key>", for messages
+  int component = 0;                ///< excited component (0, 1, 2: x, y, z)
+  std::vector<Indenter> indenters;  ///< of the base state, in order
+  int measured_indenter = -1;       ///< index in `indenters`, or -1 when a set is measured
+  Excitation excitation;
+  std::vector<bool> held;           ///< per DOF
+  std::vector<int> held_component;  ///< held DOFs in the excited component
+  HarmonicModel model;              ///< all but the linearised system
+  Measure measure = Measure::indenter_held;
+  std::vector<DofGroup> groups;     ///< {indenter, base}
+  NominalGeometry geometry;
 
-void SteadyStateStep::run(AnalysisContext& ctx) {
-  const SteadyStateSpec& s = spec_.steady_state;
-  const std::string where = ctx.spec.file.string() + ": " + s.key;
-  // --- input checks, before anything is computed or written ---
-  const System& system = ctx.system(ctx.constrained);
-  const Assembler& assembler = *system.assembler;
-  const int c = s.excitation.dofs[0] ? 0 : s.excitation.dofs[1] ? 1 : 2;
-  Vec3 e = Vec3::Zero();
-  e(c) = 1.0;
-
-  // Indenters: one appended DOF each along the excitation's component; their roles.
-  std::vector<Indenter> indenters = base_state_indenters(ctx, spec_);
-  auto indenter = [&](const std::string& name, const std::string& key) -> Indenter& {
+  const Indenter* measured() const { return measured_indenter < 0 ? nullptr : &indenters[measured_indenter]; }
+  /// The indenter of a contact named by the key `key` (InputError if not of the base state).
+  Indenter& indenter(const std::string& name, const std::string& key) {
     for (Indenter& i : indenters)
       if (i.name == name) return i;
     throw InputError(where + key + ": \"" + name + "\" is not a contact of the base state (contacts of the previous "
                      "step: " + names(indenters) + ")");
-  };
-  if (!s.excitation_contact.empty()) indenter(s.excitation_contact, ".excitation.contact").role = Indenter::Role::driven;
+  }
+};
+
+/// The roles of the indenters (driven, free with a mass, else held) and the measured one.
+void assign_roles(const SteadyStateSpec& s, SweepSetup& setup) {
+  if (!s.excitation_contact.empty())
+    setup.indenter(s.excitation_contact, ".excitation.contact").role = Indenter::Role::driven;
   for (const IndenterMotion& m : s.indenters) {
-    Indenter& i = indenter(m.contact, m.key.substr(s.key.size()) + ".contact");
+    Indenter& i = setup.indenter(m.contact, m.key.substr(s.key.size()) + ".contact");
     if (m.free) i.role = Indenter::Role::free, i.mass = m.mass;
   }
-  Indenter* measured_indenter = s.measure_contact.empty() ? nullptr : &indenter(s.measure_contact, ".measure.contact");
-  const std::size_t n_nodes_dofs = 3 * ctx.mesh.num_nodes();
-  const std::size_t n_all = n_nodes_dofs + indenters.size();
-  std::vector<Eigen::Triplet<double>> contact_triplets;
-  for (Indenter& i : indenters) {
-    try {
-      i.lin = linearise_contact(ctx.mesh, *i.set, ctx.u, i.dof, e);
-    } catch (const std::runtime_error& err) {
-      throw AnalysisError("step '" + spec_.name + "': cannot linearise the contact: " + err.what());
-    }
-    const bool named = i.role != Indenter::Role::held || &i == measured_indenter;
-    if (i.lin.closed.empty()) {
-      const std::string msg = "contact '" + i.name + "' has no closed node at the base state (t = " +
-                              std::to_string(ctx.time) + " s, smallest gap " +
-                              std::to_string(*std::min_element(i.set->gaps().begin(), i.set->gaps().end())) +
-                              " mm): the indenter does not touch the foam";
-      if (named) throw InputError(where + ": " + msg + ", so the sweep would measure nothing; press it into the foam in "
-                                  "the previous step");
-      ctx.log << "  warning: step '" << spec_.name << "': " << msg << " (held, no effect)\n";
-    }
-    contact_triplets.insert(contact_triplets.end(), i.lin.stiffness.begin(), i.lin.stiffness.end());
-  }
+  if (!s.measure_contact.empty())
+    setup.measured_indenter = static_cast<int>(&setup.indenter(s.measure_contact, ".measure.contact") -
+                                               setup.indenters.data());
+}
 
-  Excitation excitation;
+/// Freezes each indenter's contact at the base state along the excited component; a named indenter
+/// without closed node is an InputError, a held one only a warning.
+void linearise_indenters(AnalysisContext& ctx, const StepSpec& step, SweepSetup& setup) {
+  Vec3 e = Vec3::Zero();
+  e(setup.component) = 1.0;
+  for (Indenter& i : setup.indenters) {
+    try {
+      i.lin = linearise_contact(ctx.mesh(), *i.set, ctx.model().u, i.dof, e);
+    } catch (const std::runtime_error& err) {
+      throw AnalysisError("step '" + step.name + "': cannot linearise the contact: " + err.what());
+    }
+    if (!i.lin.closed.empty()) continue;
+    const bool named = i.role != Indenter::Role::held || &i == setup.measured();
+    const std::string msg = "contact '" + i.name + "' has no closed node at the base state (t = " +
+                            std::to_string(ctx.model().time) + " s, smallest gap " +
+                            std::to_string(*std::min_element(i.set->gaps().begin(), i.set->gaps().end())) +
+                            " mm): the indenter does not touch the foam";
+    if (named)
+      throw InputError(setup.where + ": " + msg + ", so the sweep would measure nothing; press it into the foam in "
+                       "the previous step");
+    ctx.log() << "  warning: step '" << step.name << "': " << msg << " (held, no effect)\n";
+  }
+}
+
+/// The driven and held DOFs, and the indenters' part of the harmonic model (DOFs, masses, springs).
+void resolve_supports(const AnalysisContext& ctx, const SteadyStateSpec& s, SweepSetup& setup) {
+  const std::size_t n_all = 3 * ctx.mesh().num_nodes() + setup.indenters.size();
+  Excitation& excitation = setup.excitation;
   if (s.excitation_contact.empty())
-    excitation.driven = component_dofs(set_nodes(ctx, s.excitation.set, s.excitation.key + ".set"), c);
+    excitation.driven = component_dofs(set_nodes(ctx, s.excitation.set, s.excitation.key + ".set"), setup.component);
   else
-    excitation.driven = {indenter(s.excitation_contact, "").dof};
-  std::vector<bool> driven(n_all, false), held(n_all, false);
+    excitation.driven = {setup.indenter(s.excitation_contact, "").dof};
+  std::vector<bool> driven(n_all, false);
+  setup.held.assign(n_all, false);
   for (int d : excitation.driven) driven[d] = true;
-  std::vector<int> held_c;  // held DOFs in the excitation's component
   for (const SetDofs& h : s.held)
     for (int k = 0; k < 3; ++k)
       if (h.dofs[k])
         for (int d : component_dofs(set_nodes(ctx, h.set, h.key + ".set"), k))
-          if (!driven[d] && !held[d]) {
-            held[d] = true;
+          if (!driven[d] && !setup.held[d]) {
+            setup.held[d] = true;
             excitation.held.push_back(d);
-            if (k == c) held_c.push_back(d);
+            if (k == setup.component) setup.held_component.push_back(d);
           }
-  HarmonicModel model;
-  for (const Indenter& i : indenters) {
-    if (i.role == Indenter::Role::held) excitation.held.push_back(i.dof), held[i.dof] = true;
-    if (i.role == Indenter::Role::free) model.lumped_mass.emplace_back(i.dof, i.mass);
+  std::vector<Eigen::Triplet<double>> contact_triplets;
+  for (const Indenter& i : setup.indenters) {
+    if (i.role == Indenter::Role::held) excitation.held.push_back(i.dof), setup.held[i.dof] = true;
+    if (i.role == Indenter::Role::free) setup.model.lumped_mass.emplace_back(i.dof, i.mass);
+    contact_triplets.insert(contact_triplets.end(), i.lin.stiffness.begin(), i.lin.stiffness.end());
   }
-  model.extra_dofs = static_cast<int>(indenters.size());
-  if (!indenters.empty()) {
-    model.extra_stiffness.resize(static_cast<Eigen::Index>(n_all), static_cast<Eigen::Index>(n_all));
-    model.extra_stiffness.setFromTriplets(contact_triplets.begin(), contact_triplets.end());
+  setup.model.extra_dofs = static_cast<int>(setup.indenters.size());
+  if (!setup.indenters.empty()) {
+    setup.model.extra_stiffness.resize(static_cast<Eigen::Index>(n_all), static_cast<Eigen::Index>(n_all));
+    setup.model.extra_stiffness.setFromTriplets(contact_triplets.begin(), contact_triplets.end());
   }
+}
 
+/// The measured DOFs (an indenter, or a driven or held set), the kind of measure, the DOF groups
+/// {indenter, base} and the nominal geometry.
+void resolve_measure(const AnalysisContext& ctx, const SteadyStateSpec& s, SweepSetup& setup) {
   std::vector<int> measured;
-  Measure measure = Measure::indenter_held;
   bool measure_driven = false;
-  if (measured_indenter) {
-    measured = {measured_indenter->dof};
-    measure_driven = measured_indenter->role == Indenter::Role::driven;
-    measure = measure_driven ? Measure::indenter_driven
-              : measured_indenter->role == Indenter::Role::free ? Measure::indenter_free : Measure::indenter_held;
+  if (const Indenter* m = setup.measured()) {
+    measured = {m->dof};
+    measure_driven = m->role == Indenter::Role::driven;
+    setup.measure = measure_driven                    ? Measure::indenter_driven
+                    : m->role == Indenter::Role::free ? Measure::indenter_free
+                                                      : Measure::indenter_held;
   } else {
     measure_driven = s.measure == s.excitation.set && s.excitation_contact.empty();
-    measured = component_dofs(set_nodes(ctx, s.measure, s.key + ".measure"), c);
+    measured = component_dofs(set_nodes(ctx, s.measure, s.key + ".measure"), setup.component);
     if (!measure_driven)
-      measured.erase(std::remove_if(measured.begin(), measured.end(), [&](int d) { return !held[d]; }), measured.end());
+      measured.erase(std::remove_if(measured.begin(), measured.end(), [&](int d) { return !setup.held[d]; }),
+                     measured.end());
     if (measured.empty())
-      throw InputError(where + ".measure: set \"" + s.measure + "\" is neither driven nor held in the excitation's dof");
-    measure = measure_driven ? Measure::indenter_driven : Measure::indenter_held;
+      throw InputError(setup.where + ".measure: set \"" + s.measure +
+                       "\" is neither driven nor held in the excitation's dof");
+    setup.measure = measure_driven ? Measure::indenter_driven : Measure::indenter_held;
   }
-  const std::vector<DofGroup> groups{{"indenter", measured}, {"base", measure_driven ? held_c : excitation.driven}};
-  const double area = s.area_from_contact ? measured_indenter->lin.closed_area : s.area;
-  const NominalGeometry geometry{area, s.thickness};
+  setup.groups = {{"indenter", measured}, {"base", measure_driven ? setup.held_component : setup.excitation.driven}};
+  setup.geometry = {s.area_from_contact ? setup.measured()->lin.closed_area : s.area, s.thickness};
+}
 
-  // --- linearisation about the carried (committed) state ---
-  const auto t0 = std::chrono::steady_clock::now();
-  auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
-  std::unique_ptr<LinearisedSystem> linearised;
+/// Resolves the step's excitation, indenters and measure against the base state; throws InputError
+/// (or AnalysisError for a contact that cannot be linearised) before anything is written.
+SweepSetup resolve_excitation(AnalysisContext& ctx, const StepSpec& step, const Assembler& assembler) {
+  const SteadyStateSpec& s = step.steady_state;
+  SweepSetup setup;
+  setup.where = ctx.spec().file.string() + ": " + s.key;
+  setup.component = s.excitation.dofs[0] ? 0 : s.excitation.dofs[1] ? 1 : 2;
+  setup.indenters = base_state_indenters(ctx, step);
+  assign_roles(s, setup);
+  linearise_indenters(ctx, step, setup);
+  resolve_supports(ctx, s, setup);
+  resolve_measure(ctx, s, setup);
+  return setup;
+}
+
+/// The model linearised about the carried (committed) state; AnalysisError if it cannot be.
+std::unique_ptr<LinearisedSystem> linearise(const AnalysisContext& ctx, const StepSpec& step,
+                                            const Assembler& assembler) {
+  const ModelState& model = ctx.model();
   try {
-    auto points = base_point_states(assembler, ctx.state, ctx.u, s.base_stress);
-    linearised = std::make_unique<LinearisedSystem>(ctx.mesh, assembler.sections(), std::move(points), ctx.u);
+    auto points = base_point_states(assembler, model.material, model.u,
+                                    step.steady_state.base_stress);
+    return std::make_unique<LinearisedSystem>(ctx.mesh(), assembler.sections(), std::move(points), model.u);
   } catch (const std::runtime_error& e) {
-    throw AnalysisError("step '" + spec_.name + "': cannot linearise the base state: " + e.what());
+    throw AnalysisError("step '" + step.name + "': cannot linearise the base state: " + e.what());
   }
-  model.system = linearised.get();
-  const double setup = seconds();
-  ctx.log << "step '" << spec_.name << "' (steady_state, " << s.frequencies.size() << " frequencies, "
-          << (s.base_stress == BaseStress::relaxed ? "relaxed" : "as-left") << " base stress, alpha = "
-          << s.damping.rayleigh_alpha << " 1/s, beta = " << s.damping.rayleigh_beta << " s, structural = "
-          << s.damping.structural << ") about t = " << ctx.time
-          << " s; linearisation " << setup << " s\n";
-  for (const Indenter& i : indenters)
-    ctx.log << "  indenter '" << i.name << "': "
-            << (i.role == Indenter::Role::held ? "held" : i.role == Indenter::Role::driven ? "driven" : "free")
-            << (i.role == Indenter::Role::free ? ", mass " + std::to_string(1e3 * i.mass) + " kg" : std::string())
-            << ", " << i.lin.closed.size() << " closed nodes (frozen normal springs" << (i.set->parameters().friction > 0.0 ? ", sticking" : ", sliding freely")
-            << " tangentially), closed area " << i.lin.closed_area << " mm^2\n";
+}
 
-  // --- the sweep: frequency k on thread k % threads, each thread with its own complex LU ---
-  const std::size_t nf = s.frequencies.size();
-  const unsigned threads = static_cast<unsigned>(std::min<std::size_t>({2, nf, std::max(1u, std::thread::hardware_concurrency())}));
-  std::vector<FrequencyResponse> responses(nf);
-  std::vector<double> solve_time(nf, 0.0);
-  std::mutex report;
-  std::exception_ptr failure;
-  SolveStats cost;  // summed over the threads
-  auto work = [&](unsigned t) {
-    try {
-      SteadyStateSolver solver(model, s.damping, excitation, groups, SolveMethod{s.iterative, s.gmres_tolerance});
-      for (std::size_t k = t; k < nf; k += threads) {
-        {
-          const std::lock_guard<std::mutex> lock(report);
-          if (failure) return;
-        }
-        const double f = s.frequencies[k];
-        const double U = s.from_acceleration
-                             ? displacement_amplitude(s.acceleration, s.reading, f)
-                             : s.displacement;
-        const auto f0 = std::chrono::steady_clock::now();
-        const int iterations = solver.stats().iterations;
-        responses[k] = solver.solve(f, U);
-        solve_time[k] = std::chrono::duration<double>(std::chrono::steady_clock::now() - f0).count();
-        const SweepRow row = make_row(responses[k], measure, geometry);
-        char line[256];
-        std::snprintf(line, sizeof line,
-                      "%-10s f = %8.4g Hz  U = %.4e mm  |E*| = %.5g kPa  phase = %7.3f deg  (%.2f s, %d iterations)",
-                      spec_.name.c_str(), f, U, 1e3 * std::abs(row.modulus), std::arg(row.stiffness) * 180.0 / M_PI,
-                      solve_time[k], solver.stats().iterations - iterations);
-        const std::lock_guard<std::mutex> lock(report);
-        ctx.log << "  " << line << "\n";
-        if (ctx.progress) *ctx.progress << line << std::endl;
+/// Logs the step's set-up: base state, damping, linearisation time [s] and the indenters.
+void log_setup(AnalysisContext& ctx, const StepSpec& step, const SweepSetup& setup, double seconds) {
+  const SteadyStateSpec& s = step.steady_state;
+  ctx.log() << "step '" << step.name << "' (steady_state, " << s.frequencies.size() << " frequencies, "
+            << (s.base_stress == BaseStress::relaxed ? "relaxed" : "as-left") << " base stress, " << describe_damping(s) << ") about t = "
+            << ctx.model().time << " s; linearisation " << seconds << " s\n";
+  for (const Indenter& i : setup.indenters)
+    ctx.log() << "  indenter '" << i.name << "': "
+              << (i.role == Indenter::Role::held ? "held" : i.role == Indenter::Role::driven ? "driven" : "free")
+              << (i.role == Indenter::Role::free ? ", mass " + std::to_string(1e3 * i.mass) + " kg" : std::string())
+              << ", " << i.lin.closed.size() << " closed nodes (frozen normal springs"
+              << (i.set->parameters().friction > 0.0 ? ", sticking" : ", sliding freely")
+              << " tangentially), closed area " << i.lin.closed_area << " mm^2\n";
+}
+
+/// Results of the sweep.
+struct SweepResult {
+  std::vector<FrequencyResponse> responses;  ///< per frequency
+  std::vector<double> solve_time;            ///< per frequency [s] (thread time)
+  SolveStats cost;                           ///< summed over the threads
+  unsigned threads = 1;
+};
+
+/// What the sweep's threads share; `lock` guards the log, `cost` and `failure`.
+struct SharedSweep {
+  SweepResult result;
+  std::mutex lock;
+  std::exception_ptr failure;  ///< the first exception of any thread
+};
+
+/// Driven displacement amplitude U [mm] at frequency f [Hz].
+double drive_amplitude(const SteadyStateSpec& s, double f) {
+  if (!s.from_acceleration) return s.displacement;
+  return displacement_amplitude(s.acceleration, s.reading, f);
+}
+
+/// Solves frequencies t, t + threads, ... with one SteadyStateSolver (one complex LU) of its own;
+/// logs one line per frequency, stops after any thread's failure.
+void solve_share(unsigned t, AnalysisContext& ctx, const StepSpec& step, const SweepSetup& setup,
+                 SharedSweep& shared) {
+  const SteadyStateSpec& s = step.steady_state;
+  SweepResult& out = shared.result;
+  try {
+    SteadyStateSolver solver(setup.model, s.damping, setup.excitation, setup.groups,
+                             SolveMethod{s.iterative, s.gmres_tolerance});
+    for (std::size_t k = t; k < s.frequencies.size(); k += out.threads) {
+      {
+        const std::lock_guard<std::mutex> lock(shared.lock);
+        if (shared.failure) return;
       }
-      const SolveStats& c = solver.stats();
-      const std::lock_guard<std::mutex> lock(report);
-      cost.complex_factorisations += c.complex_factorisations;
-      cost.real_factorisations += c.real_factorisations;
-      cost.iterations += c.iterations;
-      cost.assembly_time += c.assembly_time;
-      cost.factorisation_time += c.factorisation_time;
-      cost.solve_time += c.solve_time;
-    } catch (...) {
-      const std::lock_guard<std::mutex> lock(report);
-      if (!failure) failure = std::current_exception();
+      const double f = s.frequencies[k], U = drive_amplitude(s, f);
+      const auto f0 = std::chrono::steady_clock::now();
+      const int iterations = solver.stats().iterations;
+      out.responses[k] = solver.solve(f, U);
+      out.solve_time[k] = std::chrono::duration<double>(std::chrono::steady_clock::now() - f0).count();
+      const SweepRow row = make_row(out.responses[k], setup.measure, setup.geometry);
+      char line[256];
+      std::snprintf(line, sizeof line,
+                    "%-10s f = %8.4g Hz  U = %.4e mm  |E*| = %.5g kPa  phase = %7.3f deg  (%.2f s, %d iterations)",
+                    step.name.c_str(), f, U, 1e3 * std::abs(row.modulus), std::arg(row.stiffness) * 180.0 / M_PI,
+                    out.solve_time[k], solver.stats().iterations - iterations);
+      const std::lock_guard<std::mutex> lock(shared.lock);
+      ctx.log() << "  " << line << "\n";
+      ctx.report_progress(line);
     }
-  };
+    const SolveStats& c = solver.stats();
+    const std::lock_guard<std::mutex> lock(shared.lock);
+    out.cost.complex_factorisations += c.complex_factorisations;
+    out.cost.real_factorisations += c.real_factorisations;
+    out.cost.iterations += c.iterations;
+    out.cost.assembly_time += c.assembly_time;
+    out.cost.factorisation_time += c.factorisation_time;
+    out.cost.solve_time += c.solve_time;
+  } catch (...) {
+    const std::lock_guard<std::mutex> lock(shared.lock);
+    if (!shared.failure) shared.failure = std::current_exception();
+  }
+}
+
+/// The sweep: frequency k on thread k % threads (up to 2). A singular dynamic matrix is an
+/// AnalysisError, an invalid excitation an InputError (nothing is written then).
+SweepResult sweep(AnalysisContext& ctx, const StepSpec& step, const SweepSetup& setup) {
+  const std::size_t nf = step.steady_state.frequencies.size();
+  SharedSweep shared;
+  shared.result.threads =
+      static_cast<unsigned>(std::min<std::size_t>({2, nf, std::max(1u, std::thread::hardware_concurrency())}));
+  shared.result.responses.resize(nf);
+  shared.result.solve_time.assign(nf, 0.0);
   std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work, t);
-  work(0);
+  for (unsigned t = 1; t < shared.result.threads; ++t)
+    pool.emplace_back([&, t] { solve_share(t, ctx, step, setup, shared); });
+  solve_share(0, ctx, step, setup, shared);
   for (auto& th : pool) th.join();
-  if (failure) {
+  if (shared.failure) {
     try {
-      std::rethrow_exception(failure);
+      std::rethrow_exception(shared.failure);
     } catch (const SingularMatrixError& e) {
-      throw AnalysisError("step '" + spec_.name + "': singular dynamic matrix (undamped resonance or an "
+      throw AnalysisError("step '" + step.name + "': singular dynamic matrix (undamped resonance or an "
                           "unsupported rigid motion: add damping or hold more DOFs): " + std::string(e.what()) +
                           "; no sweep file written");
     } catch (const std::invalid_argument& e) {
-      throw InputError(where + ": " + e.what());
+      throw InputError(setup.where + ": " + e.what());
     }
   }
+  return std::move(shared.result);
+}
 
-  // --- outputs, only after every frequency succeeded ---
-  std::vector<SweepRow> rows;
-  for (const auto& r : responses) rows.push_back(make_row(r, measure, geometry));
-  const std::filesystem::path dir = ctx.output.pvd_file().parent_path();
-  const std::string measured_name =
-      measured_indenter ? "indenter '" + measured_indenter->name + "'" : "set " + s.measure;
+/// The comment lines of <step>_sweep.csv: base state, excitation, measure, modulus, damping.
+std::vector<std::string> sweep_comments(const AnalysisContext& ctx, const StepSpec& step, const SweepSetup& setup) {
+  const SteadyStateSpec& s = step.steady_state;
+  const Indenter* measured = setup.measured();
+  const std::string measured_name = measured ? "indenter '" + measured->name + "'" : "set " + s.measure;
   const std::string excited_name =
       s.excitation_contact.empty() ? "set " + s.excitation.set : "indenter '" + s.excitation_contact + "'";
+  const Measure m = setup.measure;
+  const char* amplitude = !s.from_acceleration ? "displacement amplitude"
+                          : s.reading == AccelerationReading::peak_to_peak ? "acceleration read as peak-to-peak"
+                                               : "acceleration read as peak";
   char comment[768];
   std::snprintf(comment, sizeof comment,
                 "step %s: base state at t = %.6g s (%s stress); %s excited in %c, %s; measured %s (%s); "
-                "E = (F / %.6g mm^2) / (U / %.6g mm); damping alpha = %.6g 1/s, beta = %.6g s, structural = %.6g",
-                spec_.name.c_str(), ctx.time, s.base_stress == BaseStress::relaxed ? "relaxed" : "as-left",
-                excited_name.c_str(), "xyz"[c],
-                !s.from_acceleration                              ? "displacement amplitude"
-                : s.reading == AccelerationReading::peak_to_peak ? "acceleration read as peak-to-peak"
-                                                                  : "acceleration read as peak",
-                measured_name.c_str(),
-                measure == Measure::indenter_driven ? "driven" : measure == Measure::indenter_free ? "free" : "held",
-                area, s.thickness, s.damping.rayleigh_alpha, s.damping.rayleigh_beta, s.damping.structural);
+                "E = (F / %.6g mm^2) / (U / %.6g mm); damping %s",
+                step.name.c_str(), ctx.model().time, s.base_stress == BaseStress::relaxed ? "relaxed" : "as-left", excited_name.c_str(),
+                "xyz"[setup.component], amplitude, measured_name.c_str(),
+                m == Measure::indenter_driven ? "driven" : m == Measure::indenter_free ? "free" : "held",
+                setup.geometry.area, s.thickness, describe_damping(s).c_str());
   std::vector<std::string> comments{comment};
-  if (!indenters.empty())
+  if (!setup.indenters.empty())
     comments.push_back("indenters: rigid, contact frozen at the base state (closed nodes keep a normal penalty "
                        "spring; frictionless: free tangential sliding; with friction: sticking); forces are those "
                        "of the model (not multiplied by the contact's force_factor)");
-  write_sweep_csv(dir / (spec_.name + "_sweep.csv"), rows, comments);
-  if (s.vtk) {
-    ResultSeries series(dir, spec_.name + "_sweep");
-    for (const auto& r : responses) write_frequency_frame(series, ctx.mesh, r);
+  return comments;
+}
+
+/// Writes <step>_sweep.csv and, if output.vtk, the frames of <step>_sweep.pvd (time = frequency).
+void write_sweep(AnalysisContext& ctx, const StepSpec& step, const SweepSetup& setup, const SweepResult& result) {
+  std::vector<SweepRow> rows;
+  for (const auto& r : result.responses) rows.push_back(make_row(r, setup.measure, setup.geometry));
+  const std::filesystem::path dir = ctx.output().pvd_file().parent_path();
+  write_sweep_csv(dir / (step.name + "_sweep.csv"), rows, sweep_comments(ctx, step, setup));
+  if (step.steady_state.vtk) {
+    ResultSeries series(dir, step.name + "_sweep");
+    for (const auto& r : result.responses) write_frequency_frame(series, ctx.mesh(), r);
   }
+}
+
+/// Logs the sweep's costs: per frequency and summed over the threads [s], wall time `wall` [s].
+void log_done(AnalysisContext& ctx, const StepSpec& step, const SweepResult& result, std::size_t dofs, double wall) {
+  const SolveStats& cost = result.cost;
+  const std::size_t nf = result.responses.size();
   double total = 0.0;
-  for (double t : solve_time) total += t;
-  ctx.log << "step '" << spec_.name << "' done: " << nf << " frequencies on " << threads << " threads, "
-          << linearised->num_dofs() << " DOFs, " << total / nf << " s per frequency (thread time), wall "
-          << seconds() << " s; " << (s.iterative ? "GMRES + real Cholesky" : "complex LU") << ": "
-          << cost.real_factorisations << " real and " << cost.complex_factorisations << " complex factorisations ("
-          << cost.factorisation_time << " s), " << cost.iterations << " GMRES iterations, solves " << cost.solve_time
-          << " s, assembly " << cost.assembly_time << " s (thread times)\n";
+  for (double t : result.solve_time) total += t;
+  ctx.log() << "step '" << step.name << "' done: " << nf << " frequencies on " << result.threads << " threads, "
+            << dofs << " DOFs, " << total / nf << " s per frequency (thread time), wall " << wall << " s; "
+            << (step.steady_state.iterative ? "GMRES + real Cholesky" : "complex LU") << ": "
+            << cost.real_factorisations << " real and " << cost.complex_factorisations
+            << " complex factorisations (" << cost.factorisation_time << " s), " << cost.iterations
+            << " GMRES iterations, solves " << cost.solve_time << " s, assembly " << cost.assembly_time
+            << " s (thread times)\n";
+}
+
+}  // namespace
+
+void SteadyStateStep::run(AnalysisContext& ctx) {
+  const Assembler& assembler = *ctx.system(ctx.model().constrained).assembler;
+  SweepSetup setup = resolve_excitation(ctx, spec_, assembler);
+  const auto t0 = std::chrono::steady_clock::now();
+  auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+  const std::unique_ptr<LinearisedSystem> linearised = linearise(ctx, spec_, assembler);
+  setup.model.system = linearised.get();
+  log_setup(ctx, spec_, setup, seconds());
+  const SweepResult result = sweep(ctx, spec_, setup);
+  write_sweep(ctx, spec_, setup, result);
+  log_done(ctx, spec_, result, linearised->num_dofs(), seconds());
 }
 
 std::unique_ptr<Step> make_steady_state_step(const StepSpec& spec) { return std::make_unique<SteadyStateStep>(spec); }

@@ -36,6 +36,9 @@ class ResidualContributor {
   virtual void revert() {}  ///< drop it
   /// Extra arrays for a frame (e.g. contact pressure per node, FrameData::point_fields).
   virtual void add_frame_fields(FrameData& frame) const {}
+  /// Set by the increment loop around its predictor evaluation: while true, the term may give its
+  /// linear extrapolation from the last converged state (contact: from the last indenter position).
+  virtual void set_predicting(bool on) {}
 };
 
 /// A step of the analysis.

@@ -85,10 +85,4 @@ struct ContactSpec {
   std::string key;                       ///< "steps[0].contact[0]" for messages
 };
 
-class RigidSurface;  // solver/contact/rigid_surface.hpp
-
-/// The rigid surface of an indenter (reads and checks the STL file). Defined in solver/contact
-/// (contact_contributor.cpp); the declaration moves to solver/contact at the merge.
-std::shared_ptr<const RigidSurface> make_indenter(const IndenterSpec& spec, const std::string& where);
-
 }  // namespace cushion::solver

@@ -33,8 +33,8 @@ class ContactContributor final : public ResidualContributor {
   void revert() override;
   void add_frame_fields(FrameData& frame) const override;
   /// While true, the contact term is the linear extrapolation from the last converged indenter
-  /// position (ContactSet::evaluate_predictor): set by the step driver around its predictor.
-  void set_predicting(bool on) { predicting_ = on; }
+  /// position (ContactSet::evaluate_predictor).
+  void set_predicting(bool on) override { predicting_ = on; }
   bool needs_unsymmetric_solver() const { return set_.parameters().friction > 0.0; }
 
   const ContactSet& set() const { return set_; }
@@ -57,8 +57,8 @@ class ContactContributor final : public ResidualContributor {
   bool checked_start_ = false, had_contact_ = false, contact_in_step_ = false;
 };
 
-/// The contributors of a step's contacts, created on first use and kept in ctx by name, each
-/// prepared for the step (begin_step).
+/// The contributors of a step's contacts (AnalysisContext::contact: created on first use, then
+/// kept), each prepared for the step (begin_step).
 std::vector<std::shared_ptr<ResidualContributor>> step_contacts(AnalysisContext& ctx, const StepSpec& step,
                                                                 const DofMap& dofs);
 

@@ -1,13 +1,12 @@
-#include "solver/contact/contact_contributor.hpp"
+#include "solver/analysis/contact_contributor.hpp"
 
 #include <cmath>
 #include <cstdio>
 
 #include "io/input_error.hpp"
 #include "io/text_support.hpp"
-#include "mesh/stl.hpp"
-#include "solver/analysis/analysis_context.hpp"
 #include "solver/contact/augmented_solve.hpp"
+#include "solver/contact/indenter_factory.hpp"
 
 namespace cushion::solver {
 
@@ -16,16 +15,16 @@ namespace {
 std::string fmt(const char* format, double x) { return io::format_with(format, x); }
 
 const std::vector<int>& node_set(const AnalysisContext& ctx, const ContactSpec& spec) {
-  const auto it = ctx.mesh.node_sets.find(spec.set);
-  if (it == ctx.mesh.node_sets.end())
-    throw InputError(ctx.spec.file.string() + ": " + spec.key + ".set: unknown node set \"" + spec.set + "\"");
+  const auto it = ctx.mesh().node_sets.find(spec.set);
+  if (it == ctx.mesh().node_sets.end())
+    throw InputError(ctx.spec().file.string() + ": " + spec.key + ".set: unknown node set \"" + spec.set + "\"");
   return it->second;
 }
 
 ContactSet build_set(const ContactSpec& spec, const AnalysisContext& ctx) {
-  const std::string where = ctx.spec.file.string() + ": " + spec.key;
+  const std::string where = ctx.spec().file.string() + ": " + spec.key;
   try {
-    return ContactSet(spec.name, ctx.mesh, node_set(ctx, spec), make_indenter(spec.indenter, where + ".indenter"),
+    return ContactSet(spec.name, ctx.mesh(), node_set(ctx, spec), make_indenter(spec.indenter, where + ".indenter"),
                       spec.parameters);
   } catch (const InputError& e) {
     const std::string what = e.what();
@@ -35,18 +34,6 @@ ContactSet build_set(const ContactSpec& spec, const AnalysisContext& ctx) {
 
 }  // namespace
 
-std::shared_ptr<const RigidSurface> make_indenter(const IndenterSpec& s, const std::string& where) {
-  switch (s.type) {
-    case IndenterSpec::Type::plane: return make_plane(s.point, s.direction);
-    case IndenterSpec::Type::sphere: return make_sphere(s.point, s.radius);
-    case IndenterSpec::Type::cylinder: return make_cylinder(s.point, s.direction, s.radius);
-    case IndenterSpec::Type::flat_punch: return make_flat_punch(s.point.x(), s.point.y(), s.point.z(), s.radius, s.edge_radius);
-    case IndenterSpec::Type::sitbar: return make_sitbar(s.sitbar);
-    case IndenterSpec::Type::stl: return make_stl_surface(mesh::read_stl(s.stl_file.string()), s.stl_file.string() + " (" + where + ")");
-  }
-  throw InputError(where + ": unknown indenter type");
-}
-
 std::vector<std::string> contact_history_columns(const std::string& n) {
   return {n + ".U1_mm", n + ".U2_mm", n + ".U3_mm", n + ".F1_N", n + ".F2_N", n + ".F3_N", n + ".normal_force_N",
           n + ".area_mm2", n + ".mean_pressure_kPa", n + ".max_penetration_mm", n + ".active_nodes",
@@ -55,30 +42,30 @@ std::vector<std::string> contact_history_columns(const std::string& n) {
 
 ContactContributor::ContactContributor(const ContactSpec& spec, AnalysisContext& ctx)
     : ctx_(ctx), set_(build_set(spec, ctx)), force_factor_(spec.force_factor),
-      history_(ctx.output.pvd_file().parent_path() / ("contact_" + spec.name + ".csv"),
+      history_(ctx.output().pvd_file().parent_path() / ("contact_" + spec.name + ".csv"),
                contact_history_columns(spec.name),
                {"contact '" + spec.name + "': " + set_.surface().describe(),
                 "U = indenter translation; F = force of the indenter on the foam; forces and area x force_factor " +
                     fmt("%g", spec.force_factor)}) {
   const std::vector<double> zeros(contact_history_columns(spec.name).size(), 0.0);
-  history_.write_row(ctx.time, zeros);
+  history_.write_row(ctx.model().time, zeros);
 }
 
 void ContactContributor::begin_step(const ContactSpec& spec, const StepSpec& step, const DofMap& dofs) {
   step_spec_ = spec;
   step_ = &step;
   dofs_ = &dofs;
-  t_start_ = ctx_.time;
+  t_start_ = ctx_.model().time;
   start_position_ = committed_position_;
   contact_in_step_ = false;
   if (!checked_start_) {
     set_.set_position(committed_position_);
     char when[64];
-    std::snprintf(when, sizeof when, "at t = %g s", ctx_.time);
+    std::snprintf(when, sizeof when, "at t = %g s", ctx_.model().time);
     try {
-      check_no_initial_penetration(set_, ctx_.u, when);
+      check_no_initial_penetration(set_, ctx_.model().u, when);
     } catch (const InputError& e) {
-      throw InputError(ctx_.spec.file.string() + ": " + spec.key + ": " + e.what());
+      throw InputError(ctx_.spec().file.string() + ": " + spec.key + ": " + e.what());
     }
     checked_start_ = true;
   }
@@ -87,7 +74,7 @@ void ContactContributor::begin_step(const ContactSpec& spec, const StepSpec& ste
 Vec3 ContactContributor::motion_at(double t_total) const {
   const double t_step = t_total - t_start_, period = step_->period;
   if (step_spec_.amplitude) {
-    const Amplitude& a = ctx_.spec.amplitudes.at(*step_spec_.amplitude);
+    const Amplitude& a = ctx_.spec().amplitudes.at(*step_spec_.amplitude);
     return step_spec_.motion * a.at(a.total_time ? t_total : t_step);
   }
   return start_position_ + (step_spec_.motion - start_position_) * std::min(1.0, t_step / period);
@@ -109,7 +96,7 @@ bool ContactContributor::update_after_solve(std::string& failure) {
   const AugmentOutcome a = set_.augment();
   if (a.failed) failure = a.message;
   if (!a.converged)
-    ctx_.log << "    contact '" << set_.name() << "': augmentation " << set_.augmentations() << ", penetration "
+    ctx_.log() << "    contact '" << set_.name() << "': augmentation " << set_.augmentations() << ", penetration "
              << a.max_penetration << " mm > " << set_.parameters().tolerance << " mm\n";
   return !a.converged && !a.failed;
 }
@@ -136,8 +123,8 @@ void ContactContributor::commit() {
            step_->name + "' (smallest gap " + fmt("%.4g", t.min_gap) + " mm at the end); check its position and motion";
   }
   if (!note.empty()) {
-    ctx_.log << "  warning: " << note << "\n";
-    if (ctx_.progress) *ctx_.progress << "warning: " << note << std::endl;
+    ctx_.log() << "  warning: " << note << "\n";
+    ctx_.report_progress("warning: " + note);
   }
 }
 
@@ -149,11 +136,9 @@ std::vector<std::shared_ptr<ResidualContributor>> step_contacts(AnalysisContext&
                                                                 const DofMap& dofs) {
   std::vector<std::shared_ptr<ResidualContributor>> out;
   for (const ContactSpec& c : step.contact) {
-    auto& slot = ctx.contributors["contact:" + c.name];
-    if (!slot) slot = std::make_shared<ContactContributor>(c, ctx);
-    auto* contact = static_cast<ContactContributor*>(slot.get());
+    std::shared_ptr<ContactContributor> contact = ctx.contact(c);
     contact->begin_step(c, step, dofs);
-    out.push_back(slot);
+    out.push_back(std::move(contact));
   }
   return out;
 }
