@@ -44,16 +44,12 @@
 
 namespace cushion::solver {
 
-class DynamicStep final : public Step {
+class DynamicStep final : public CaseStep {
  public:
-  explicit DynamicStep(const StepSpec& spec) : spec_(spec) {}
-  const StepSpec& spec() const override { return spec_; }
+  using CaseStep::CaseStep;
   /// Throws InputError for a material without density (before any output of the step),
   /// AnalysisError when an increment cannot converge, Interrupted after Ctrl-C.
   void run(AnalysisContext& ctx) override;
-
- private:
-  const StepSpec& spec_;
 };
 
 /// The Step of a "dynamic" case step (called by make_step).

@@ -21,18 +21,14 @@
 
 namespace cushion::solver {
 
-class SteadyStateStep final : public Step {
+class SteadyStateStep final : public CaseStep {
  public:
-  explicit SteadyStateStep(const StepSpec& spec) : spec_(spec) {}
-  const StepSpec& spec() const override { return spec_; }
+  using CaseStep::CaseStep;
   /// Throws InputError for a named indenter without contact at the base state (before anything is
   /// written; input errors of the case, mesh and material are raised by load_case); AnalysisError if
   /// the base state cannot be linearised or a frequency hits an undamped resonance (no sweep file is
   /// then written).
   void run(AnalysisContext& ctx) override;
-
- private:
-  const StepSpec& spec_;
 };
 
 /// The Step of a "steady_state" case step (called by make_step).

@@ -51,6 +51,16 @@ class Step {
   virtual void run(AnalysisContext& ctx) = 0;
 };
 
+/// A Step that runs one step of the case file: holds its spec (which outlives the step).
+class CaseStep : public Step {
+ public:
+  explicit CaseStep(const StepSpec& spec) : spec_(spec) {}
+  const StepSpec& spec() const final { return spec_; }
+
+ protected:
+  const StepSpec& spec_;
+};
+
 /// Time [s] the materials see in a "static" step with long_term: much longer than any relaxation
 /// time, so a Prony series relaxes completely within the increment (H_i -> 0, S = S_inf).
 inline constexpr double long_term_dt = 1e20;
@@ -61,17 +71,15 @@ inline constexpr double long_term_dt = 1e20;
 ///    response with the viscous stresses frozen at their values from the previous step; with
 ///    long_term they see long_term_dt, i.e. the fully relaxed (long-term) response
 ///    (*STATIC, LONG TERM). Step time then only drives the amplitudes.
-class QuasiStaticStep final : public Step {
+class QuasiStaticStep final : public CaseStep {
  public:
-  explicit QuasiStaticStep(const StepSpec& spec) : spec_(spec) {}
-  const StepSpec& spec() const override { return spec_; }
+  using CaseStep::CaseStep;
   void run(AnalysisContext& ctx) override;
 
   /// Adds an extra equilibrium term for every increment of this step.
   void add_contributor(std::shared_ptr<ResidualContributor> c) { contributors_.push_back(std::move(c)); }
 
  private:
-  const StepSpec& spec_;
   std::vector<std::shared_ptr<ResidualContributor>> contributors_;
 };
 
