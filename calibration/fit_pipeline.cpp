@@ -28,6 +28,7 @@ class Stopwatch {
 };
 
 std::string percent(double x) {
+  if (!std::isfinite(x)) return "n/a";
   std::ostringstream o;
   o << std::fixed << std::setprecision(2) << 100.0 * x << " %";
   return o.str();
@@ -103,14 +104,22 @@ FitResult fit_pipeline(const Campaign& campaign, const FitOptions& options, std:
       << percent(R.hyperfoam.rms_error) << " of peak, " << (R.hyperfoam.stable ? "stable" : "UNSTABLE") << "\n";
   clock.lap("hyperfoam fit");
 
-  // Step 6: Prony.
+  // Step 6: Prony (E_inf free as in the paper; by default E_inf = the hyperfoam's long-term tangent at the preload).
   try {
-    R.prony = fit_prony(dyn->moduli, options.tau);
+    R.prony_free = fit_prony(dyn->moduli, options.tau);
+    R.prony = R.prony_free;
+    if (options.prony_long_term_from_hyperfoam)
+      R.prony = fit_prony(dyn->moduli, options.tau,
+                          preload_tangent(material::Hyperfoam(R.hyperfoam.terms), dyn->preload_strain).K_hf);
   } catch (const std::invalid_argument& e) {
     throw InputError(dyn->file.string() + ": " + e.what());
   }
   log << "fit: [6] Prony fit at " << dyn->moduli.frequency.size() << " frequencies: chi2 " << R.prony.chi2
-      << ", E_inf " << R.prony.E_inf * 1e3 << " kPa\n";
+      << ", E_inf " << R.prony.E_inf * 1e3 << " kPa"
+      << (R.prony.E_inf_fixed ? " (the hyperfoam's long-term tangent at the preload; E_inf fitted freely as in the paper: " +
+                                    std::to_string(R.prony_free.E_inf * 1e3) + " kPa, chi2 " + std::to_string(R.prony_free.chi2) + ")"
+                              : std::string())
+      << "\n";
   clock.lap("Prony fit");
 
   FitOptions run_options = options;
@@ -137,7 +146,7 @@ FitResult fit_pipeline(const Campaign& campaign, const FitOptions& options, std:
       q = predict_quasi_static(*model, campaign.specimen, *qs, R.segments, qs_hz);
     } catch (const std::exception& e) {  // e.g. E_inf = 0: the paper's g_i sum to 1
       d.magnitude_rms = d.phase_rms = q.rms_error = q.max_error = std::nan("");
-      R.warnings.push_back("Prony normalisation " + to_string(n) + " gives no usable material: " + e.what());
+      R.warnings.push_back("Prony normalisation " + to_string(n) + " gives no usable material (its errors: n/a): " + e.what());
       log << "fit: warning: " << R.warnings.back() << "\n";
       if (n == options.normalisation) R.run_normalisation = PronyNormalisation::tangent;
       continue;
@@ -167,7 +176,7 @@ FitResult fit_pipeline(const Campaign& campaign, const FitOptions& options, std:
     log << "fit: [8] refit on " << targets.size() << " quasi-static test(s) and " << dyn->name << " (" << f.iterations << " iterations, " << f.evaluations << " model runs, "
         << std::setprecision(3) << f.seconds << " s): quasi-static " << percent(f.quasi_static_rms_start) << " -> "
         << percent(f.quasi_static_rms) << ", dynamic " << percent(f.dynamic_rms_start) << " -> " << percent(f.dynamic_rms)
-        << (f.accepted() ? "" : "  (NOT accepted)") << "\n";
+        << (f.accepted() ? "" : "  (NOT accepted: " + f.rejection + ")") << "\n";
     if (options.default_material == DefaultMaterial::refit) {
       if (f.accepted()) {
         R.default_material = f.material;
@@ -175,9 +184,7 @@ FitResult fit_pipeline(const Campaign& campaign, const FitOptions& options, std:
         R.default_reason = "the refit converged, is Drucker-stable and lowers the joint error of the solver's model on both "
                            "calibration tests";
       } else {
-        R.default_reason = std::string("the refit was not accepted (") + (f.converged ? "" : "did not converge; ") +
-                           (f.stable ? "" : "unstable hyperfoam; ") + (f.improved ? "" : "no improvement; ") +
-                           "): the paper's material";
+        R.default_reason = "the refit was not accepted (" + f.rejection + "): the paper's material";
       }
     } else {
       R.default_reason = "requested with --default paper";
@@ -185,13 +192,25 @@ FitResult fit_pipeline(const Campaign& campaign, const FitOptions& options, std:
   } else {
     R.default_reason = "refit disabled (--no-refit)";
   }
-  // Never hand out a material the solver rejects (e.g. an unstable paper fit with sum mu <= 0).
+  // Never hand out a material the solver rejects or a Drucker-unstable one.
   R.paper_problem = material_problem(R.paper_material);
+  if (R.paper_problem.empty() && !R.hyperfoam.stable) R.paper_problem = "Drucker-unstable hyperfoam";
   if (R.refit) R.refit_problem = material_problem(R.refit->material);
-  if (R.default_choice == DefaultMaterial::paper && !R.paper_problem.empty() && R.refit && R.refit_problem.empty()) {
+  if (R.refit && R.refit_problem.empty() && !R.refit->stable) R.refit_problem = R.refit->rejection;
+  const bool refit_usable = R.refit && R.refit->converged && R.refit_problem.empty();
+  if (R.default_choice == DefaultMaterial::paper && !R.paper_problem.empty() && refit_usable) {
     R.default_material = R.refit->material;
     R.default_choice = DefaultMaterial::refit;
     R.default_reason += "; but the paper's material is not usable (" + R.paper_problem + "): the refit";
+  }
+  // Nor, by default, a paper's material that misses a calibration test by more than 100 % (e.g. E_inf ~ 0 with the
+  // paper's normalisation) when the refit is usable and closer.
+  const double paper_error = std::max(R.refit ? R.refit->quasi_static_rms_start : 0.0, R.refit ? R.refit->dynamic_rms_start : 0.0);
+  if (R.default_choice == DefaultMaterial::paper && options.default_material == DefaultMaterial::refit && refit_usable &&
+      !(paper_error <= 1.0) && R.refit->cost < R.refit->cost_start) {
+    R.default_material = R.refit->material;
+    R.default_choice = DefaultMaterial::refit;
+    R.default_reason += "; but the paper's material misses the calibration tests by " + percent(paper_error) + ": the refit";
   }
   if ((R.default_choice == DefaultMaterial::paper ? R.paper_problem : R.refit_problem) != "")
     throw std::runtime_error("fit: no usable material: paper's: " + R.paper_problem +
