@@ -53,8 +53,9 @@ struct PairStress {
 /// sigma_v that depends on the strain only (a mode with beta T << 1 is a spring: -Re alpha eps(t)), so
 /// without bounds a slow mode with a huge residue "fits" and the decomposition's elastic curve is that
 /// spring (seen: alpha = 1e4 peak, an elastic curve of -90 MPa). A viscous overstress of a dissipative
-/// material is, on loading, 0 <= sigma_v(t1) <= sigma(t1), and on unloading sigma_v(t2) <= 0; the rows are
-/// max(0, violation - slack) (slack in units of the peak stress).
+/// material is, on loading, 0 <= sigma_v(t1) <= sigma(t1) (the elastic stress is compressive), and on
+/// unloading sigma_v(t2) <= sigma(t2) (likewise; sigma_v itself may stay positive for a while after the turn);
+/// the rows are max(0, violation - slack) (slack in units of the peak stress).
 class DifferenceStressCost final : public ceres::CostFunction {
  public:
   DifferenceStressCost(const StressStrainRecord& r, const StrainPairs& p, const std::vector<double>& measured,
@@ -102,8 +103,8 @@ class DifferenceStressCost final : public ceres::CostFunction {
     if (!bounds_) return true;
     const double slack = bounds_->slack;
     for (std::size_t q = 0; q < n; ++q) {
-      // row n + 3q: sigma_v(t1) >= 0; n + 3q + 1: sigma_v(t1) <= sigma(t1); n + 3q + 2: sigma_v(t2) <= 0.
-      const double viol[3] = {-v1[q] - slack, v1[q] - bounds_->loading[q] - slack, v2[q] - slack};
+      // row n + 3q: sigma_v(t1) >= 0; n + 3q + 1: sigma_v(t1) <= sigma(t1); n + 3q + 2: sigma_v(t2) <= sigma(t2).
+      const double viol[3] = {-v1[q] - slack, v1[q] - bounds_->loading[q] - slack, v2[q] - bounds_->unloading[q] - slack};
       const double sign[3] = {-1.0, 1.0, 1.0};
       const std::vector<double>* grad[3] = {&g1, &g1, &g2};
       for (int b = 0; b < 3; ++b) {
@@ -300,11 +301,16 @@ HereditaryFit fit_hereditary(const StressStrainRecord& r, const Segments& s, con
   std::vector<std::vector<cplx>> refine;
   for (std::size_t k = 0; k < projected.size() && k < std::size_t(std::max(1, o.refined_starts)); ++k)
     refine.push_back(projected[k].betas);
+  const std::size_t projected_refines = refine.size();
   for (const auto& b : starts) refine.push_back(b);
   HereditaryFit best;
   best.starts = int(starts.size());
   double best_cost = std::numeric_limits<double>::infinity();
-  for (const auto& betas : refine) {
+  bool best_bounded = false;  // a bound row is active at the best solution
+  for (std::size_t k = 0; k < refine.size(); ++k) {
+    // The grid starts only when the projected solutions end against the bounds.
+    if (k == projected_refines && !best.modes.empty() && !best_bounded) break;
+    const auto& betas = refine[k];
     std::vector<HereditaryMode> init = best_residues(knots, p, y, betas);
     std::vector<double> x(4 * M);
     for (int i = 0; i < M; ++i) {
@@ -327,6 +333,10 @@ HereditaryFit fit_hereditary(const StressStrainRecord& r, const Segments& s, con
     ceres::Solve(solver_options(o), &problem, &summary);
     if (summary.IsSolutionUsable() && summary.final_cost < best_cost) {
       best_cost = summary.final_cost;
+      std::vector<double> res;
+      problem.Evaluate(ceres::Problem::EvaluateOptions(), nullptr, &res, nullptr, nullptr);
+      best_bounded = false;
+      for (std::size_t q = y.size(); q < res.size(); ++q) best_bounded = best_bounded || res[q] != 0.0;
       best.modes.resize(M);
       for (int i = 0; i < M; ++i) best.modes[i] = {cplx(x[4 * i], x[4 * i + 1]) * peak, cplx(x[4 * i + 2], x[4 * i + 3])};
       best.report = summary.BriefReport();

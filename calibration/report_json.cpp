@@ -95,7 +95,9 @@ nlohmann::json report_json(const FitResult& R, const Campaign& campaign) {
                    {"magnitude_kPa", r.magnitude * 1e3}, {"magnitude_model_kPa", r.magnitude_model * 1e3},
                    {"phase_deg", r.phase}, {"phase_model_deg", r.phase_model}});
   j["prony"] = {{"E_inf_kPa", R.prony.E_inf * 1e3}, {"E_kPa", kpa(R.prony.E)}, {"tau_s", R.prony.tau},
-                {"chi2", R.prony.chi2}, {"bounds_active", R.prony.bounds_active}, {"residuals", res}};
+                {"chi2", R.prony.chi2}, {"bounds_active", R.prony.bounds_active}, {"residuals", res},
+                {"E_inf_from_hyperfoam", R.prony.E_inf_fixed},
+                {"paper_free_E_inf", {{"E_inf_kPa", R.prony_free.E_inf * 1e3}, {"E_kPa", kpa(R.prony_free.E)}, {"chi2", R.prony_free.chi2}}}};
   const PronyConversion& c = R.conversion;
   auto gs = [](const std::vector<material::PronyTerm>& p) {
     json a = json::array();
