@@ -147,6 +147,7 @@ FitResult fit_pipeline(const Campaign& campaign, const FitOptions& options, std:
     } catch (const std::exception& e) {  // e.g. E_inf = 0: the paper's g_i sum to 1
       d.magnitude_rms = d.phase_rms = q.rms_error = q.max_error = std::nan("");
       R.warnings.push_back("Prony normalisation " + to_string(n) + " gives no usable material (its errors: n/a): " + e.what());
+      (n == PronyNormalisation::paper ? R.normalisation_failure_paper : R.normalisation_failure_tangent) = e.what();
       log << "fit: warning: " << R.warnings.back() << "\n";
       if (n == options.normalisation) R.run_normalisation = PronyNormalisation::tangent;
       continue;
@@ -217,11 +218,37 @@ FitResult fit_pipeline(const Campaign& campaign, const FitOptions& options, std:
                              (R.refit ? "; refit: " + R.refit_problem : std::string()));
   clock.lap("refit");
 
-  // Every test of the campaign, paper's material vs refit.
-  const auto paper_model = build_model(R.paper_material);
+  // Every test of the campaign, paper's material vs refit. A prediction that fails (one material, one test:
+  // e.g. the point driver's Newton not converging) is reported "n/a (reason)" and never aborts the fit.
   const ViscoHyperfoam& refit_material = R.refit ? R.refit->material : R.paper_material;
-  const auto refit_model = build_model(refit_material);
   const material::Hyperfoam refit_base(refit_material.terms);
+  std::shared_ptr<const material::Material> paper_model, refit_model;
+  std::string paper_model_failure, refit_model_failure;
+  try {
+    paper_model = build_model(R.paper_material);
+  } catch (const std::exception& e) {
+    paper_model_failure = std::string("the material gives no model: ") + e.what();
+  }
+  try {
+    refit_model = build_model(refit_material);
+  } catch (const std::exception& e) {
+    refit_model_failure = std::string("the material gives no model: ") + e.what();
+  }
+  // Runs `predict` into `error` (NaN and `failure` set when it throws).
+  auto attempt = [](const std::string& model_failure, std::string& failure, double& error, auto&& predict) {
+    error = std::nan("");
+    if (!model_failure.empty()) {
+      failure = model_failure;
+      return;
+    }
+    try {
+      error = predict();
+      if (!std::isfinite(error)) failure = "non-finite error";
+    } catch (const std::exception& e) {
+      failure = e.what();
+      error = std::nan("");
+    }
+  };
   for (const auto& t : campaign.quasi_static) {
     TestComparison c;
     c.name = t.name;
@@ -229,12 +256,15 @@ FitResult fit_pipeline(const Campaign& campaign, const FitOptions& options, std:
     c.use = t.use == TestUse::calibration ? "calibration" : (options.refit && options.refit_all_quasi_static ? "refit target" : "validation");
     const Segments s = &t == qs ? R.segments : detect_segments(t.record);
     const double hz = std::min(10.0, sampling_rate(t.record));
-    c.quasi_static_paper = predict_quasi_static(*paper_model, campaign.specimen, t, s, hz);
-    c.error_paper = c.quasi_static_paper->rms_error;
-    if (R.refit) {
-      c.quasi_static_refit = predict_quasi_static(*refit_model, campaign.specimen, t, s, hz);
-      c.error_refit = c.quasi_static_refit->rms_error;
-    }
+    attempt(paper_model_failure, c.failure_paper, c.error_paper, [&] {
+      c.quasi_static_paper = predict_quasi_static(*paper_model, campaign.specimen, t, s, hz);
+      return c.quasi_static_paper->rms_error;
+    });
+    if (R.refit)
+      attempt(refit_model_failure, c.failure_refit, c.error_refit, [&] {
+        c.quasi_static_refit = predict_quasi_static(*refit_model, campaign.specimen, t, s, hz);
+        return c.quasi_static_refit->rms_error;
+      });
     R.comparisons.push_back(std::move(c));
   }
   for (const auto& t : campaign.dynamic) {
@@ -242,17 +272,49 @@ FitResult fit_pipeline(const Campaign& campaign, const FitOptions& options, std:
     c.name = t.name;
     c.kind = "dynamic";
     c.use = t.use == TestUse::calibration ? "calibration" : "validation";
-    c.dynamic_paper = predict_dynamic(*paper_model, paper_base, t, sched);
-    c.error_paper = c.dynamic_paper->magnitude_rms;
-    if (R.refit) {
-      c.dynamic_refit = predict_dynamic(*refit_model, refit_base, t, sched);
-      c.error_refit = c.dynamic_refit->magnitude_rms;
-    }
+    attempt(paper_model_failure, c.failure_paper, c.error_paper, [&] {
+      c.dynamic_paper = predict_dynamic(*paper_model, paper_base, t, sched);
+      return c.dynamic_paper->magnitude_rms;
+    });
+    if (R.refit)
+      attempt(refit_model_failure, c.failure_refit, c.error_refit, [&] {
+        c.dynamic_refit = predict_dynamic(*refit_model, refit_base, t, sched);
+        return c.dynamic_refit->magnitude_rms;
+      });
     R.comparisons.push_back(std::move(c));
   }
+  // The solver must run the default material on every calibration test: when its prediction of one failed
+  // (e.g. seed 31 of the random foams: the refit, fitted with the fast uniaxial model, makes the point driver's
+  // free-stretch Newton fail) and the other usable material ran them all, the other one is the default.
+  auto failed_calibration = [&](bool refit_material_) {
+    std::string why;
+    for (const auto& c : R.comparisons)
+      if (c.use == "calibration" && !(refit_material_ ? c.failure_refit : c.failure_paper).empty())
+        why += (why.empty() ? "" : "; ") + c.name + ": " + (refit_material_ ? c.failure_refit : c.failure_paper);
+    return why;
+  };
+  if (R.refit) {
+    const bool is_refit = R.default_choice == DefaultMaterial::refit;
+    const std::string why = failed_calibration(is_refit);
+    if (!why.empty()) {
+      const bool other_usable = is_refit ? R.paper_problem.empty() : refit_usable;
+      if (other_usable && failed_calibration(!is_refit).empty()) {
+        R.default_material = is_refit ? R.paper_material : R.refit->material;
+        R.default_choice = is_refit ? DefaultMaterial::paper : DefaultMaterial::refit;
+        R.default_reason += std::string("; but the solver's model of the ") + (is_refit ? "refit" : "paper's material") +
+                            " fails on a calibration test (" + why + "): the " + (is_refit ? "paper's material" : "refit");
+      } else {
+        R.default_reason += "; note: the solver's model of the default material fails on a calibration test (" + why + ")";
+      }
+      log << "fit: warning: default material: " << R.default_reason << "\n";
+    }
+  }
+  auto shown = [](double error, const std::string& failure) {
+    return failure.empty() ? percent(error) : "n/a (" + failure + ")";
+  };
   for (const auto& c : R.comparisons)
-    log << "fit: " << c.use << " " << c.name << ": error paper " << percent(c.error_paper)
-        << (R.refit ? ", refit " + percent(c.error_refit) : std::string()) << "\n";
+    log << "fit: " << c.use << " " << c.name << ": error paper " << shown(c.error_paper, c.failure_paper)
+        << (R.refit ? ", refit " + shown(c.error_refit, c.failure_refit) : std::string()) << "\n";
   clock.lap("comparison on every test");
   return R;
 }

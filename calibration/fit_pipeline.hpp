@@ -41,6 +41,9 @@ struct TestComparison {
   std::optional<QuasiStaticPrediction> quasi_static_paper, quasi_static_refit;
   std::optional<DynamicPrediction> dynamic_paper, dynamic_refit;
   double error_paper = 0.0, error_refit = 0.0;  ///< qs: RMS/peak [-]; dynamic: RMS of |E*| relative error [-]
+  /// Why the material's prediction of this test failed (its error NaN, reported "n/a (reason)"); empty: it ran.
+  /// A failing prediction (e.g. the point driver not converging) never aborts the fit.
+  std::string failure_paper, failure_refit;
 };
 
 struct FitResult {
@@ -67,6 +70,7 @@ struct FitResult {
   DynamicPrediction dynamic_normalisation_paper, dynamic_normalisation_tangent;       ///< calibration dynamic test
   QuasiStaticPrediction quasi_static_normalisation_paper, quasi_static_normalisation_tangent;
   PronyNormalisation run_normalisation = PronyNormalisation::tangent;  ///< used (options' unless unusable)
+  std::string normalisation_failure_paper, normalisation_failure_tangent;  ///< why a normalisation gives no usable material (its errors n/a); empty: usable
   ViscoHyperfoam paper_material;  ///< hyperfoam + Prony with run_normalisation
   // step 8
   std::optional<RefitResult> refit;

@@ -99,6 +99,7 @@ nlohmann::json report_json(const FitResult& R, const Campaign& campaign) {
                 {"E_inf_from_hyperfoam", R.prony.E_inf_fixed},
                 {"paper_free_E_inf", {{"E_inf_kPa", R.prony_free.E_inf * 1e3}, {"E_kPa", kpa(R.prony_free.E)}, {"chi2", R.prony_free.chi2}}}};
   const PronyConversion& c = R.conversion;
+  auto na = [](const std::string& reason) { return json("n/a (" + reason + ")"); };
   auto gs = [](const std::vector<material::PronyTerm>& p) {
     json a = json::array();
     for (const auto& t : p) a.push_back(t.g);
@@ -109,11 +110,11 @@ nlohmann::json report_json(const FitResult& R, const Campaign& campaign) {
       {"K_hf_kPa", c.preload.K_hf * 1e3}, {"K_v_kPa", c.preload.K_v * 1e3}, {"S11_kPa", c.preload.S11 * 1e3},
       {"preload_stress_kPa", c.preload.stress * 1e3},
       {"paper", {{"g", gs(c.paper)}, {"a_long_term", c.a_paper},
-                 {"dynamic", dynamic_json(R.dynamic_normalisation_paper)},
-                 {"quasi_static", quasi_static_json(R.quasi_static_normalisation_paper)}}},
+                 {"dynamic", R.normalisation_failure_paper.empty() ? dynamic_json(R.dynamic_normalisation_paper) : na(R.normalisation_failure_paper)},
+                 {"quasi_static", R.normalisation_failure_paper.empty() ? quasi_static_json(R.quasi_static_normalisation_paper) : na(R.normalisation_failure_paper)}}},
       {"tangent", {{"g", gs(c.tangent)}, {"a_long_term", c.a_tangent},
-                   {"dynamic", dynamic_json(R.dynamic_normalisation_tangent)},
-                   {"quasi_static", quasi_static_json(R.quasi_static_normalisation_tangent)}}},
+                   {"dynamic", R.normalisation_failure_tangent.empty() ? dynamic_json(R.dynamic_normalisation_tangent) : na(R.normalisation_failure_tangent)},
+                   {"quasi_static", R.normalisation_failure_tangent.empty() ? quasi_static_json(R.quasi_static_normalisation_tangent) : na(R.normalisation_failure_tangent)}}},
       {"chosen", to_string(R.run_normalisation)}};
   j["material_paper"] = material_json(R.paper_material);
   if (R.refit) {
@@ -130,8 +131,10 @@ nlohmann::json report_json(const FitResult& R, const Campaign& campaign) {
   j["default"] = {{"material", R.default_choice == DefaultMaterial::paper ? "paper" : "refit"}, {"reason", R.default_reason}};
   json tests = json::array();
   for (const auto& t : R.comparisons) {
-    json e{{"name", t.name}, {"kind", t.kind}, {"use", t.use}, {"error_paper", t.error_paper}};
-    if (R.refit) e["error_refit"] = t.error_refit;
+    // A failed prediction: "n/a (reason)" instead of a number (never NaN in the report).
+    auto error = [](double x, const std::string& failure) { return failure.empty() ? json(x) : json("n/a (" + failure + ")"); };
+    json e{{"name", t.name}, {"kind", t.kind}, {"use", t.use}, {"error_paper", error(t.error_paper, t.failure_paper)}};
+    if (R.refit) e["error_refit"] = error(t.error_refit, t.failure_refit);
     e["error_measure"] = t.kind == "quasi_static" ? "RMS(model - measured)/peak stress" : "RMS of |E*| relative error";
     if (t.quasi_static_paper) e["paper"] = quasi_static_json(*t.quasi_static_paper);
     if (t.quasi_static_refit) e["refit"] = quasi_static_json(*t.quasi_static_refit);
