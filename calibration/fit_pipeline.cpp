@@ -28,6 +28,7 @@ class Stopwatch {
 };
 
 std::string percent(double x) {
+  if (!std::isfinite(x)) return "n/a";
   std::ostringstream o;
   o << std::fixed << std::setprecision(2) << 100.0 * x << " %";
   return o.str();
@@ -124,15 +125,26 @@ void hyperfoam_step(const CalibrationTests& c, FitResult& R, std::ostream& log) 
       << percent(R.hyperfoam.rms_error) << " of peak, " << (R.hyperfoam.stable ? "stable" : "UNSTABLE") << "\n";
 }
 
-/// Step 6: Prony series E_inf + sum E_i at the given tau_i fitted to the dynamic moduli.
+/// Step 6: Prony series E_inf + sum E_i at the given tau_i fitted to the dynamic moduli: E_inf free as in the
+/// paper (always reported), and by default E_inf = the hyperfoam's long-term tangent at the preload (1-20 Hz
+/// data cannot separate E_inf from the 100 s term; the free fit may return E_inf = 0).
 void prony_step(const CalibrationTests& c, FitResult& R, std::ostream& log) {
   try {
-    R.prony = fit_prony(c.dyn.moduli, c.options.tau);
+    R.prony_free = fit_prony(c.dyn.moduli, c.options.tau);
+    R.prony = R.prony_free;
+    if (c.options.prony_long_term_from_hyperfoam)
+      R.prony = fit_prony(c.dyn.moduli, c.options.tau,
+                          preload_tangent(material::Hyperfoam(R.hyperfoam.terms), c.dyn.preload_strain).K_hf);
   } catch (const std::invalid_argument& e) {
     throw InputError(c.dyn.file.string() + ": " + e.what());
   }
   log << "fit: [6] Prony fit at " << c.dyn.moduli.frequency.size() << " frequencies: chi2 " << R.prony.chi2
-      << ", E_inf " << R.prony.E_inf * 1e3 << " kPa\n";
+      << ", E_inf " << R.prony.E_inf * 1e3 << " kPa"
+      << (R.prony.E_inf_fixed ? " (the hyperfoam's long-term tangent at the preload; E_inf fitted freely as in the "
+                                "paper: " + std::to_string(R.prony_free.E_inf * 1e3) + " kPa, chi2 " +
+                                    std::to_string(R.prony_free.chi2) + ")"
+                              : std::string())
+      << "\n";
 }
 
 /// Step 7, one normalisation: the solver's model with these relative moduli on both calibration tests. A
@@ -149,7 +161,8 @@ void judge_normalisation(const CalibrationTests& c, PronyNormalisation n, const 
     q = predict_quasi_static(*model, c.campaign.specimen, c.qs, R.segments, qs_hz);
   } catch (const std::exception& e) {  // e.g. E_inf = 0: the paper's g_i sum to 1
     d.magnitude_rms = d.phase_rms = q.rms_error = q.max_error = std::nan("");
-    warn(R, "Prony normalisation " + to_string(n) + " gives no usable material: " + e.what(), log);
+    warn(R, "Prony normalisation " + to_string(n) + " gives no usable material (its errors: n/a): " + e.what(), log);
+    (n == PronyNormalisation::paper ? R.normalisation_failure_paper : R.normalisation_failure_tangent) = e.what();
     if (n == c.options.normalisation) R.run_normalisation = PronyNormalisation::tangent;
     return;
   }
@@ -188,7 +201,7 @@ void refit_step(const CalibrationTests& c, FitResult& R, std::ostream& log) {
   log << "fit: [8] refit on " << targets.size() << " quasi-static test(s) and " << c.dyn.name << " (" << f.iterations << " iterations, " << f.evaluations << " model runs, "
       << std::setprecision(3) << f.seconds << " s): quasi-static " << percent(f.quasi_static_rms_start) << " -> "
       << percent(f.quasi_static_rms) << ", dynamic " << percent(f.dynamic_rms_start) << " -> " << percent(f.dynamic_rms)
-      << (f.accepted() ? "" : "  (NOT accepted)") << "\n";
+      << (f.accepted() ? "" : "  (NOT accepted: " + f.rejection + ")") << "\n";
 }
 
 /// The default material as requested: the refit when requested and accepted, else the paper's; with the reason.
@@ -205,32 +218,77 @@ void choose_requested_default(const FitOptions& options, FitResult& R) {
     R.default_reason = "the refit converged, is Drucker-stable and lowers the joint error of the solver's model on both "
                        "calibration tests";
   } else {
-    R.default_reason = std::string("the refit was not accepted (") + (f.converged ? "" : "did not converge; ") +
-                       (f.stable ? "" : "unstable hyperfoam; ") + (f.improved ? "" : "no improvement; ") +
-                       "): the paper's material";
+    R.default_reason = "the refit was not accepted (" + f.rejection + "): the paper's material";
   }
 }
 
-/// Choose the default material: as requested, but never one the solver rejects (e.g. an unstable paper
-/// fit with sum mu <= 0); throws when neither material is usable.
+/// The refit is converged and has no material problem (so it can replace the paper's material).
+bool refit_usable(const FitResult& R) { return R.refit && R.refit->converged && R.refit_problem.empty(); }
+
+/// Choose the default material: as requested, but never one the solver rejects or a Drucker-unstable one,
+/// nor (by default) a paper's material that misses a calibration test by more than 100 % when the refit is
+/// usable and closer; throws when neither material is usable.
 void choose_default(const FitOptions& options, FitResult& R) {
   choose_requested_default(options, R);
   R.paper_problem = material_problem(R.paper_material);
+  if (R.paper_problem.empty() && !R.hyperfoam.stable) R.paper_problem = "Drucker-unstable hyperfoam";
   if (R.refit) R.refit_problem = material_problem(R.refit->material);
-  if (R.default_choice == DefaultMaterial::paper && !R.paper_problem.empty() && R.refit && R.refit_problem.empty()) {
+  if (R.refit && R.refit_problem.empty() && !R.refit->stable) R.refit_problem = R.refit->rejection;
+  if (R.default_choice == DefaultMaterial::paper && !R.paper_problem.empty() && refit_usable(R)) {
     R.default_material = R.refit->material;
     R.default_choice = DefaultMaterial::refit;
     R.default_reason += "; but the paper's material is not usable (" + R.paper_problem + "): the refit";
+  }
+  const double paper_error = R.refit ? std::max(R.refit->quasi_static_rms_start, R.refit->dynamic_rms_start) : 0.0;
+  if (R.default_choice == DefaultMaterial::paper && options.default_material == DefaultMaterial::refit &&
+      refit_usable(R) && !(paper_error <= 1.0) && R.refit->cost < R.refit->cost_start) {
+    R.default_material = R.refit->material;
+    R.default_choice = DefaultMaterial::refit;
+    R.default_reason += "; but the paper's material misses the calibration tests by " + percent(paper_error) + ": the refit";
   }
   if ((R.default_choice == DefaultMaterial::paper ? R.paper_problem : R.refit_problem) != "")
     throw std::runtime_error("fit: no usable material: paper's: " + R.paper_problem +
                              (R.refit ? "; refit: " + R.refit_problem : std::string()));
 }
 
-/// The paper's material and the refit (when run) as the solver's models, for the comparisons.
+/// A material as the solver's model, or why it gives none.
+struct ComparedModel {
+  std::shared_ptr<const material::Material> model;
+  material::Hyperfoam base;
+  std::string failure;  ///< non-empty: no model (every prediction "n/a (failure)")
+};
+
+ComparedModel compared_model(const ViscoHyperfoam& m) {
+  ComparedModel out{nullptr, material::Hyperfoam(m.terms), ""};
+  try {
+    out.model = build_model(m);
+  } catch (const std::exception& e) {
+    out.failure = std::string("the material gives no model: ") + e.what();
+  }
+  return out;
+}
+
+/// Runs `predict` (returning the test's error) into `error`; a throw or a non-finite error leaves the error NaN
+/// and the reason in `failure`: one failing prediction never aborts the fit.
+template <class Predict>
+void attempt(const ComparedModel& m, std::string& failure, double& error, Predict&& predict) {
+  error = std::nan("");
+  if (!m.failure.empty()) {
+    failure = m.failure;
+    return;
+  }
+  try {
+    error = predict();
+    if (!std::isfinite(error)) failure = "non-finite error";
+  } catch (const std::exception& e) {
+    failure = e.what();
+    error = std::nan("");
+  }
+}
+
+/// The paper's material and the refit (the paper's when no refit ran) as the solver's models.
 struct ComparedModels {
-  std::shared_ptr<const material::Material> paper, refit;
-  material::Hyperfoam paper_base, refit_base;
+  ComparedModel paper, refit;
 };
 
 /// One quasi-static test of the campaign: error of the paper's material and of the refit.
@@ -244,12 +302,15 @@ TestComparison compare_quasi_static(const CalibrationTests& c, const QuasiStatic
                 : (c.options.refit && c.options.refit_all_quasi_static ? "refit target" : "validation");
   const Segments s = &t == &c.qs ? R.segments : detect_segments(t.record);
   const double hz = std::min(10.0, sampling_rate(t.record));
-  cmp.quasi_static_paper = predict_quasi_static(*m.paper, c.campaign.specimen, t, s, hz);
-  cmp.error_paper = cmp.quasi_static_paper->rms_error;
-  if (R.refit) {
-    cmp.quasi_static_refit = predict_quasi_static(*m.refit, c.campaign.specimen, t, s, hz);
-    cmp.error_refit = cmp.quasi_static_refit->rms_error;
-  }
+  attempt(m.paper, cmp.failure_paper, cmp.error_paper, [&] {
+    cmp.quasi_static_paper = predict_quasi_static(*m.paper.model, c.campaign.specimen, t, s, hz);
+    return cmp.quasi_static_paper->rms_error;
+  });
+  if (R.refit)
+    attempt(m.refit, cmp.failure_refit, cmp.error_refit, [&] {
+      cmp.quasi_static_refit = predict_quasi_static(*m.refit.model, c.campaign.specimen, t, s, hz);
+      return cmp.quasi_static_refit->rms_error;
+    });
   return cmp;
 }
 
@@ -260,25 +321,61 @@ TestComparison compare_dynamic(const CalibrationTests& c, const DynamicTest& t, 
   cmp.name = t.name;
   cmp.kind = "dynamic";
   cmp.use = t.use == TestUse::calibration ? "calibration" : "validation";
-  cmp.dynamic_paper = predict_dynamic(*m.paper, m.paper_base, t, c.sched());
-  cmp.error_paper = cmp.dynamic_paper->magnitude_rms;
-  if (R.refit) {
-    cmp.dynamic_refit = predict_dynamic(*m.refit, m.refit_base, t, c.sched());
-    cmp.error_refit = cmp.dynamic_refit->magnitude_rms;
-  }
+  attempt(m.paper, cmp.failure_paper, cmp.error_paper, [&] {
+    cmp.dynamic_paper = predict_dynamic(*m.paper.model, m.paper.base, t, c.sched());
+    return cmp.dynamic_paper->magnitude_rms;
+  });
+  if (R.refit)
+    attempt(m.refit, cmp.failure_refit, cmp.error_refit, [&] {
+      cmp.dynamic_refit = predict_dynamic(*m.refit.model, m.refit.base, t, c.sched());
+      return cmp.dynamic_refit->magnitude_rms;
+    });
   return cmp;
 }
 
-/// Report: every test of the campaign (calibration and validation), paper's material vs refit.
+/// The calibration tests on which the refit's (or the paper's) prediction failed, with the reasons; "" if none.
+std::string failed_calibration(const FitResult& R, bool refit) {
+  std::string why;
+  for (const auto& c : R.comparisons)
+    if (c.use == "calibration" && !(refit ? c.failure_refit : c.failure_paper).empty())
+      why += (why.empty() ? "" : "; ") + c.name + ": " + (refit ? c.failure_refit : c.failure_paper);
+  return why;
+}
+
+/// The solver must run the default material on every calibration test: when its prediction of one failed
+/// (e.g. a refit fitted with the fast uniaxial model on which the point driver's free-stretch Newton fails) and
+/// the other usable material ran them all, the other one becomes the default.
+void check_default_runs(FitResult& R, std::ostream& log) {
+  if (!R.refit) return;
+  const bool is_refit = R.default_choice == DefaultMaterial::refit;
+  const std::string why = failed_calibration(R, is_refit);
+  if (why.empty()) return;
+  const bool other_usable = is_refit ? R.paper_problem.empty() : refit_usable(R);
+  if (other_usable && failed_calibration(R, !is_refit).empty()) {
+    R.default_material = is_refit ? R.paper_material : R.refit->material;
+    R.default_choice = is_refit ? DefaultMaterial::paper : DefaultMaterial::refit;
+    R.default_reason += std::string("; but the solver's model of the ") + (is_refit ? "refit" : "paper's material") +
+                        " fails on a calibration test (" + why + "): the " + (is_refit ? "paper's material" : "refit");
+  } else {
+    R.default_reason += "; note: the solver's model of the default material fails on a calibration test (" + why + ")";
+  }
+  log << "fit: warning: default material: " << R.default_reason << "\n";
+}
+
+/// Report: every test of the campaign (calibration and validation), paper's material vs refit; a prediction
+/// that fails is reported "n/a (reason)".
 void compare_every_test(const CalibrationTests& c, FitResult& R, std::ostream& log) {
-  const ViscoHyperfoam& refit_material = R.refit ? R.refit->material : R.paper_material;
-  const ComparedModels m{build_model(R.paper_material), build_model(refit_material),
-                         material::Hyperfoam(R.hyperfoam.terms), material::Hyperfoam(refit_material.terms)};
+  const ComparedModels m{compared_model(R.paper_material),
+                         compared_model(R.refit ? R.refit->material : R.paper_material)};
   for (const auto& t : c.campaign.quasi_static) R.comparisons.push_back(compare_quasi_static(c, t, m, R));
   for (const auto& t : c.campaign.dynamic) R.comparisons.push_back(compare_dynamic(c, t, m, R));
+  check_default_runs(R, log);
+  auto shown = [](double error, const std::string& failure) {
+    return failure.empty() ? percent(error) : "n/a (" + failure + ")";
+  };
   for (const auto& cmp : R.comparisons)
-    log << "fit: " << cmp.use << " " << cmp.name << ": error paper " << percent(cmp.error_paper)
-        << (R.refit ? ", refit " + percent(cmp.error_refit) : std::string()) << "\n";
+    log << "fit: " << cmp.use << " " << cmp.name << ": error paper " << shown(cmp.error_paper, cmp.failure_paper)
+        << (R.refit ? ", refit " + shown(cmp.error_refit, cmp.failure_refit) : std::string()) << "\n";
 }
 
 }  // namespace

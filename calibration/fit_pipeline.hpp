@@ -26,6 +26,9 @@ struct FitOptions {
   bool refit_all_quasi_static = false; ///< step 8 on every quasi-static test (several rates), not only the calibration ones
   DefaultMaterial default_material = DefaultMaterial::refit;  ///< the refit if accepted, else the paper's
   PronyNormalisation normalisation = PronyNormalisation::tangent;  ///< step 7 choice for the paper's material
+  /// Step 6: E_inf = the hyperfoam's long-term tangent K_hf at the preload, only E_i fitted (1-20 Hz data cannot
+  /// separate E_inf from the 100 s term; the free fit may return E_inf = 0). false: E_inf fitted (the paper's).
+  bool prony_long_term_from_hyperfoam = true;
   HereditaryFitOptions hereditary;
   RefitOptions refit_options;          ///< its `schedule` is set from the two options below
   DynamicSchedule dynamic_schedule;    ///< paper 2.3 timing: 30 mm/min preload ramp, 20 cycles, last 10 measured
@@ -38,6 +41,9 @@ struct TestComparison {
   std::optional<QuasiStaticPrediction> quasi_static_paper, quasi_static_refit;
   std::optional<DynamicPrediction> dynamic_paper, dynamic_refit;
   double error_paper = 0.0, error_refit = 0.0;  ///< qs: RMS/peak [-]; dynamic: RMS of |E*| relative error [-]
+  /// Why the material's prediction of this test failed (its error NaN, reported "n/a (reason)"); empty: it ran.
+  /// A failing prediction (e.g. the point driver not converging) never aborts the fit.
+  std::string failure_paper, failure_refit;
 };
 
 struct FitResult {
@@ -57,12 +63,14 @@ struct FitResult {
   // step 5
   HyperfoamFit hyperfoam;
   // step 6
-  PronyFit prony;
+  PronyFit prony;       ///< used for the paper's material (E_inf per options.prony_long_term_from_hyperfoam)
+  PronyFit prony_free;  ///< the paper's fit with E_inf free, always reported
   // step 7
   PronyConversion conversion;
   DynamicPrediction dynamic_normalisation_paper, dynamic_normalisation_tangent;       ///< calibration dynamic test
   QuasiStaticPrediction quasi_static_normalisation_paper, quasi_static_normalisation_tangent;
   PronyNormalisation run_normalisation = PronyNormalisation::tangent;  ///< used (options' unless unusable)
+  std::string normalisation_failure_paper, normalisation_failure_tangent;  ///< why a normalisation gives no usable material (its errors n/a); empty: usable
   ViscoHyperfoam paper_material;  ///< hyperfoam + Prony with run_normalisation
   // step 8
   std::optional<RefitResult> refit;

@@ -1,6 +1,7 @@
 #include "calibration/hereditary_fit.hpp"
 
 #include "calibration/ceres_options.hpp"
+#include "calibration/segments.hpp"
 
 #include <ceres/ceres.h>
 
@@ -17,6 +18,7 @@ namespace {
 /// D_i(q) = J_i(t1_q) - J_i(t2_q) and its beta-derivative for one mode.
 struct ModeDifference {
   std::vector<cplx> D, dD;
+  std::vector<cplx> J1, dJ1, J2, dJ2;  ///< the kernel itself at t1 (loading) and t2 (unloading)
 };
 
 ModeDifference mode_difference(const StressStrainRecord& r, const StrainPairs& p, cplx beta) {
@@ -31,24 +33,48 @@ ModeDifference mode_difference(const StressStrainRecord& r, const StrainPairs& p
     m.D[i] = K.J[i] - K.J[n + i];
     m.dD[i] = K.dJ_dbeta[i] - K.dJ_dbeta[n + i];
   }
+  m.J1.assign(K.J.begin(), K.J.begin() + long(n));
+  m.J2.assign(K.J.begin() + long(n), K.J.end());
+  m.dJ1.assign(K.dJ_dbeta.begin(), K.dJ_dbeta.begin() + long(n));
+  m.dJ2.assign(K.dJ_dbeta.begin() + long(n), K.dJ_dbeta.end());
   return m;
 }
+
+/// Measured stress at the pair times, in the fit's units, and the slack of the physical bounds.
+struct PairStress {
+  std::vector<double> loading, unloading;  ///< sigma(t1), sigma(t2)
+  double slack = 0.02;                     ///< tolerance of the bounds below
+};
 
 /// Residuals model - measured; parameters [Re a, Im a, Re b, Im b] per mode (paper Table 2 order).
 /// Model: delta_sigma = -Re sum alpha_i D_i, so d/dRe a = -Re D, d/dIm a = Im D,
 /// d/dRe b = -Re(alpha D'), d/dIm b = Im(alpha D') (J holomorphic in beta).
+/// Then 3 bound rows per pair (zero while the bound holds): the difference stress does not see a part of
+/// sigma_v that depends on the strain only (a mode with beta T << 1 is a spring: -Re alpha eps(t)), so
+/// without bounds a slow mode with a huge residue "fits" and the decomposition's elastic curve is that
+/// spring (seen: alpha = 1e4 peak, an elastic curve of -90 MPa). A viscous overstress of a dissipative
+/// material is, on loading, 0 <= sigma_v(t1) <= sigma(t1) (the elastic stress is compressive), and on
+/// unloading sigma_v(t2) <= sigma(t2) (likewise; sigma_v itself may stay positive for a while after the turn);
+/// the rows are max(0, violation - slack) (slack in units of the peak stress).
 class DifferenceStressCost final : public ceres::CostFunction {
  public:
   DifferenceStressCost(const StressStrainRecord& r, const StrainPairs& p, const std::vector<double>& measured,
-                       int modes)
-      : r_(r), p_(p), measured_(measured), modes_(modes) {
-    set_num_residuals(int(measured.size()));
+                       int modes, const PairStress* bounds = nullptr)
+      : r_(r), p_(p), measured_(measured), modes_(modes), bounds_(bounds) {
+    set_num_residuals(int(measured.size() * (bounds ? 4 : 1)));
     mutable_parameter_block_sizes()->push_back(4 * modes);
   }
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
     const double* x = parameters[0];
     const std::size_t n = measured_.size();
+    const std::size_t P = 4 * std::size_t(modes_);
     for (std::size_t q = 0; q < n; ++q) residuals[q] = -measured_[q];
+    // sigma_v at t1 and t2 and their gradients (bounds only).
+    std::vector<double> v1(n, 0.0), v2(n, 0.0), g1, g2;
+    if (bounds_) {
+      g1.assign(n * P, 0.0);
+      g2.assign(n * P, 0.0);
+    }
     for (int i = 0; i < modes_; ++i) {
       const cplx alpha(x[4 * i], x[4 * i + 1]), beta(x[4 * i + 2], x[4 * i + 3]);
       const auto m = mode_difference(r_, p_, beta);
@@ -56,13 +82,38 @@ class DifferenceStressCost final : public ceres::CostFunction {
         residuals[q] -= (alpha * m.D[q]).real();
         if (!std::isfinite(residuals[q])) return false;
         if (jacobians && jacobians[0]) {
-          double* row = jacobians[0] + q * 4 * modes_ + 4 * i;
+          double* row = jacobians[0] + q * P + 4 * i;
           const cplx aD = alpha * m.dD[q];
           row[0] = -m.D[q].real();
           row[1] = m.D[q].imag();
           row[2] = -aD.real();
           row[3] = aD.imag();
         }
+        if (bounds_) {
+          v1[q] -= (alpha * m.J1[q]).real();
+          v2[q] -= (alpha * m.J2[q]).real();
+          const cplx a1 = alpha * m.dJ1[q], a2 = alpha * m.dJ2[q];
+          double* r1 = g1.data() + q * P + 4 * i;
+          double* r2 = g2.data() + q * P + 4 * i;
+          r1[0] = -m.J1[q].real(), r1[1] = m.J1[q].imag(), r1[2] = -a1.real(), r1[3] = a1.imag();
+          r2[0] = -m.J2[q].real(), r2[1] = m.J2[q].imag(), r2[2] = -a2.real(), r2[3] = a2.imag();
+        }
+      }
+    }
+    if (!bounds_) return true;
+    const double slack = bounds_->slack;
+    for (std::size_t q = 0; q < n; ++q) {
+      // row n + 3q: sigma_v(t1) >= 0; n + 3q + 1: sigma_v(t1) <= sigma(t1); n + 3q + 2: sigma_v(t2) <= sigma(t2).
+      const double viol[3] = {-v1[q] - slack, v1[q] - bounds_->loading[q] - slack, v2[q] - bounds_->unloading[q] - slack};
+      const double sign[3] = {-1.0, 1.0, 1.0};
+      const std::vector<double>* grad[3] = {&g1, &g1, &g2};
+      for (int b = 0; b < 3; ++b) {
+        const std::size_t row = n + 3 * q + std::size_t(b);
+        const bool active = viol[b] > 0.0;
+        residuals[row] = active ? viol[b] : 0.0;
+        if (!std::isfinite(residuals[row])) return false;
+        if (jacobians && jacobians[0])
+          for (std::size_t j = 0; j < P; ++j) jacobians[0][row * P + j] = active ? sign[b] * (*grad[b])[q * P + j] : 0.0;
       }
     }
     return true;
@@ -73,6 +124,7 @@ class DifferenceStressCost final : public ceres::CostFunction {
   const StrainPairs& p_;
   const std::vector<double>& measured_;
   int modes_;
+  const PairStress* bounds_;
 };
 
 /// Variable projection (Golub-Pereyra with Kaufman's Jacobian): parameters are only the decay rates
@@ -238,21 +290,37 @@ HereditaryFit fit_hereditary(const StressStrainRecord& r, const Segments& s, con
   }
   std::stable_sort(projected.begin(), projected.end(), [](const Projected& a, const Projected& b) { return a.cost < b.cost; });
 
-  // Stage 2 for the best of them: all 4M parameters from the projected solution (residues by linear least squares).
+  // Stage 2: all 4M parameters with the physical bounds on sigma_v (DifferenceStressCost), from the best
+  // projected solutions and from the grid starts themselves (a projected solution may sit at beta -> 0, the
+  // unbounded spring the bounds exclude); residues by linear least squares, clipped to the bounds.
+  PairStress bounds;
+  for (std::size_t q = 0; q < p.t1.size(); ++q) {
+    bounds.loading.push_back(interpolate(r.time, r.stress, p.t1[q]) / peak);
+    bounds.unloading.push_back(interpolate(r.time, r.stress, p.t2[q]) / peak);
+  }
+  std::vector<std::vector<cplx>> refine;
+  for (std::size_t k = 0; k < projected.size() && k < std::size_t(std::max(1, o.refined_starts)); ++k)
+    refine.push_back(projected[k].betas);
+  const std::size_t projected_refines = refine.size();
+  for (const auto& b : starts) refine.push_back(b);
   HereditaryFit best;
   best.starts = int(starts.size());
   double best_cost = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < projected.size() && k < std::size_t(std::max(1, o.refined_starts)); ++k) {
-    std::vector<HereditaryMode> init = best_residues(knots, p, y, projected[k].betas);
+  bool best_bounded = false;  // a bound row is active at the best solution
+  for (std::size_t k = 0; k < refine.size(); ++k) {
+    // The grid starts only when the projected solutions end against the bounds.
+    if (k == projected_refines && !best.modes.empty() && !best_bounded) break;
+    const auto& betas = refine[k];
+    std::vector<HereditaryMode> init = best_residues(knots, p, y, betas);
     std::vector<double> x(4 * M);
     for (int i = 0; i < M; ++i) {
       x[4 * i] = std::clamp(init[i].alpha.real(), -alpha_max, alpha_max);
       x[4 * i + 1] = std::clamp(init[i].alpha.imag(), -alpha_max, alpha_max);
-      x[4 * i + 2] = init[i].beta.real();
-      x[4 * i + 3] = init[i].beta.imag();
+      x[4 * i + 2] = std::clamp(init[i].beta.real(), 0.0, beta_max);
+      x[4 * i + 3] = std::clamp(init[i].beta.imag(), 0.0, beta_max);
     }
     ceres::Problem problem;
-    problem.AddResidualBlock(new DifferenceStressCost(knots, p, y, M), nullptr, x.data());
+    problem.AddResidualBlock(new DifferenceStressCost(knots, p, y, M, &bounds), nullptr, x.data());
     for (int i = 0; i < M; ++i) {
       for (int j = 0; j < 2; ++j) {
         problem.SetParameterLowerBound(x.data(), 4 * i + j, -alpha_max);
@@ -265,6 +333,10 @@ HereditaryFit fit_hereditary(const StressStrainRecord& r, const Segments& s, con
     ceres::Solve(solver_options(o), &problem, &summary);
     if (summary.IsSolutionUsable() && summary.final_cost < best_cost) {
       best_cost = summary.final_cost;
+      std::vector<double> res;
+      problem.Evaluate(ceres::Problem::EvaluateOptions(), nullptr, &res, nullptr, nullptr);
+      best_bounded = false;
+      for (std::size_t q = y.size(); q < res.size(); ++q) best_bounded = best_bounded || res[q] != 0.0;
       best.modes.resize(M);
       for (int i = 0; i < M; ++i) best.modes[i] = {cplx(x[4 * i], x[4 * i + 1]) * peak, cplx(x[4 * i + 2], x[4 * i + 3])};
       best.report = summary.BriefReport();

@@ -8,8 +8,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <functional>
+#include <sstream>
 #include <stdexcept>
 
+#include "calibration/prony_fit.hpp"
 #include "calibration/uniaxial_model.hpp"
 #include "material/stability.hpp"
 
@@ -34,27 +37,56 @@ struct CurveResidual {
     const T c = lateral_exponent(p[2][0], lateral);
     for (std::size_t j = 0; j < e->size(); ++j) {
       T sum(0.0);
-      for (int i = 0; i < N; ++i) sum += term_stress(p[0][i], p[1][i], c, (*e)[j]);
-      r[j] = (sum - (*s)[j]) / peak;
+      for (int i = 0; i < N; ++i) sum += term_stress(p[0][i], p[1][i], c, (*e)[j]);  // mu in units of peak
+      r[j] = sum - (*s)[j] / peak;
     }
     return true;
   }
 };
 
-std::vector<std::vector<double>> alpha_starts(int N) {
-  std::vector<std::vector<double>> starts;
-  if (N == 1) {
-    for (double a : {1.0, 2.0, 4.0, 10.0, 20.0, 40.0, -2.0}) starts.push_back({a});
-    return starts;
+/// Exponent grid of the global search: both signs, spaced roughly geometrically; coarser for many terms so
+/// that the number of N-subsets stays a few thousand.
+std::vector<double> alpha_grid(int N, double alpha_max) {
+  std::vector<double> positive{0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0, 12.0, 15.0, 18.0, 22.0, 27.0, 33.0, 40.0, 50.0};
+  std::vector<double> negative{-0.5, -1.0, -1.5, -2.0, -2.5, -3.0, -4.0, -5.0, -6.0, -8.0, -10.0, -13.0, -16.0, -20.0};
+  if (N >= 4) {
+    positive = {0.5, 1.0, 2.0, 3.0, 5.0, 8.0, 12.0, 18.0, 27.0, 40.0};
+    negative = {-0.5, -1.0, -2.0, -3.0, -5.0, -8.0, -13.0, -20.0};
   }
-  for (auto [lo, hi] : {std::pair{1.0, 10.0}, std::pair{2.0, 20.0}, std::pair{4.0, 40.0}}) {
-    std::vector<double> a(N);
-    for (int i = 0; i < N; ++i) a[i] = lo * std::pow(hi / lo, double(i) / (N - 1));
-    starts.push_back(a);
-    a[0] = -a[0];
-    starts.push_back(a);
+  if (N >= 5) {
+    positive = {1.0, 2.0, 4.0, 8.0, 15.0, 27.0, 45.0};
+    negative = {-1.0, -2.0, -4.0, -8.0, -16.0};
   }
-  return starts;
+  std::vector<double> grid;
+  for (double a : negative)
+    if (-a <= alpha_max) grid.push_back(a);
+  for (double a : positive)
+    if (a <= alpha_max) grid.push_back(a);
+  return grid;
+}
+
+/// Every N-subset of {0 .. size-1}, indices increasing.
+std::vector<std::vector<int>> subsets(int size, int N) {
+  std::vector<std::vector<int>> out;
+  std::vector<int> pick(N);
+  std::function<void(int, int)> choose = [&](int depth, int from) {
+    if (depth == N) {
+      out.push_back(pick);
+      return;
+    }
+    for (int k = from; k < size; ++k) {
+      pick[depth] = k;
+      choose(depth + 1, k + 1);
+    }
+  };
+  choose(0, 0);
+  return out;
+}
+
+std::string join(const std::vector<double>& v) {
+  std::ostringstream o;
+  for (std::size_t i = 0; i < v.size(); ++i) o << (i ? ", " : "") << v[i];
+  return o.str();
 }
 
 }  // namespace
@@ -86,33 +118,85 @@ HyperfoamFit fit_hyperfoam(const ElasticCurve& curve, const HyperfoamFitOptions&
   }
   if (!(peak > 0.0)) throw std::invalid_argument("fit_hyperfoam: the curve has no stress");
 
+  // 1. Global screen over exponent subsets (on at most ~150 evenly spread points), mu linear.
+  std::vector<std::size_t> rows;
+  const std::size_t stride = std::max<std::size_t>(1, e.size() / 150);
+  for (std::size_t j = 0; j < e.size(); j += stride) rows.push_back(j);
+  if (rows.back() + 1 != e.size()) rows.push_back(e.size() - 1);
+  Eigen::VectorXd y(rows.size());
+  for (std::size_t k = 0; k < rows.size(); ++k) y(Eigen::Index(k)) = s[rows[k]] / peak;
+  const std::vector<double> grid = alpha_grid(N, o.alpha_max);
+  const std::vector<std::vector<int>> combos = subsets(int(grid.size()), N);
+  const std::vector<double> nus = o.fit_nu ? std::vector<double>{0.0, 0.1, 0.2, 0.3, 0.4} : std::vector<double>{o.nu};
+
   struct Candidate {
-    double cost;
+    double cost;                  ///< 0.5 sum r^2 (all points)
     std::vector<double> mu, alpha;
     double nu;
+    bool non_negative;            ///< mu_i >= 0 kept in the polish
   };
-  std::vector<Candidate> candidates;
+  std::vector<Candidate> screened_nn, screened_free;
+  const std::size_t keep = std::size_t(std::max(1, o.polished));
+  auto insert = [&](std::vector<Candidate>& list, Candidate c) {
+    // Distinct exponent subsets only (a polish of two starts with the same exponents would repeat itself).
+    for (const auto& other : list)
+      if (other.alpha == c.alpha && other.nu == c.nu) return;
+    list.push_back(std::move(c));
+    std::sort(list.begin(), list.end(), [](const Candidate& a, const Candidate& b) { return a.cost < b.cost; });
+    if (list.size() > keep) list.pop_back();
+  };
   HyperfoamFit fit;
-  // Every start runs twice: free, and with mu_i >= 0 (with nu >= 0 a sufficient condition for Drucker
-  // stability), so that a stable candidate exists whenever the free optimum is unstable.
-  for (const bool positive_mu : {false, true})
-  for (const auto& a0 : alpha_starts(N)) {
-    std::vector<double> mu(N), alpha = a0, nu{o.nu};
-    // Variable projection start: mu linear for fixed alpha, nu.
-    Eigen::MatrixXd A(e.size(), N);
-    Eigen::VectorXd b(e.size());
-    const double c = lateral_exponent(nu[0], o.lateral);
-    for (std::size_t j = 0; j < e.size(); ++j) {
-      for (int i = 0; i < N; ++i) A(j, i) = term_stress(1.0, alpha[i], c, e[j]);
-      b(j) = s[j];
+  for (double nu : nus) {
+    const double c = lateral_exponent(nu, o.lateral);
+    Eigen::MatrixXd columns(rows.size(), grid.size());
+    for (std::size_t g = 0; g < grid.size(); ++g)
+      for (std::size_t k = 0; k < rows.size(); ++k) columns(Eigen::Index(k), Eigen::Index(g)) = term_stress(1.0, grid[g], c, e[rows[k]]);  // unit mu: x = mu/peak
+    for (const auto& combo : combos) {
+      ++fit.starts;
+      Eigen::MatrixXd A(rows.size(), N);
+      std::vector<double> alpha(N);
+      for (int i = 0; i < N; ++i) {
+        A.col(i) = columns.col(combo[i]);
+        alpha[i] = grid[combo[i]];
+      }
+      const Eigen::VectorXd m_nn = non_negative_least_squares(A, y);
+      const double cost_nn = 0.5 * (A * m_nn - y).squaredNorm();
+      if (std::isfinite(cost_nn) && m_nn.maxCoeff() > 0.0)
+        insert(screened_nn, {cost_nn, std::vector<double>(m_nn.data(), m_nn.data() + N), alpha, nu, true});
+      Eigen::VectorXd scale = A.colwise().norm().transpose();
+      for (Eigen::Index j = 0; j < scale.size(); ++j) scale(j) = scale(j) > 0.0 ? scale(j) : 1.0;
+      const Eigen::VectorXd m_ls =
+          (A * scale.cwiseInverse().asDiagonal()).colPivHouseholderQr().solve(y).cwiseQuotient(scale);
+      const double cost_ls = 0.5 * (A * m_ls - y).squaredNorm();
+      if (m_ls.allFinite() && m_ls.minCoeff() < 0.0 && std::isfinite(cost_ls) && cost_ls < cost_nn)
+        insert(screened_free, {cost_ls, std::vector<double>(m_ls.data(), m_ls.data() + N), alpha, nu, false});
     }
-    const Eigen::VectorXd m0 = A.colPivHouseholderQr().solve(b);
-    for (int i = 0; i < N; ++i) mu[i] = std::isfinite(m0(i)) ? m0(i) : 0.0;
-    if (positive_mu)
-      for (int i = 0; i < N; ++i) mu[i] = std::max(mu[i], 1e-3 * peak / N);
+  }
 
-    auto* cost = new ceres::DynamicAutoDiffCostFunction<CurveResidual, 4>(
-        new CurveResidual{&e, &s, peak, N, o.lateral});
+  // 2. Polish (mu in units of the peak stress, all points).
+  auto stable = [&](const std::vector<double>& mu, const std::vector<double>& alpha, double nu) {
+    std::vector<material::HyperfoamTerm> t;
+    for (int i = 0; i < N; ++i) t.push_back({mu[i] * peak, alpha[i], nu});
+    double sum = 0.0;
+    for (double m : mu) sum += m;
+    return sum > 0.0 && material::check_stability(material::Hyperfoam(t), -e_max, o.stability_tension).stable();
+  };
+  auto full_cost = [&](const std::vector<double>& mu, const std::vector<double>& alpha, double nu) {
+    std::vector<material::HyperfoamTerm> t;
+    for (int i = 0; i < N; ++i) t.push_back({mu[i] * peak, alpha[i], nu});
+    const auto model = hyperfoam_uniaxial_stress(t, nu, o.lateral, e);
+    double sum = 0.0;
+    for (std::size_t j = 0; j < e.size(); ++j) sum += std::pow((model[j] - s[j]) / peak, 2);
+    return 0.5 * sum;
+  };
+  std::vector<Candidate> finals;
+  std::vector<Candidate> starts = screened_nn;
+  starts.insert(starts.end(), screened_free.begin(), screened_free.end());
+  const ceres::Solver::Options so =
+      dense_fit_options({o.function_tolerance, o.gradient_tolerance, o.parameter_tolerance, o.max_iterations});
+  for (const Candidate& start : starts) {
+    std::vector<double> mu = start.mu, alpha = start.alpha, nu{start.nu};
+    auto* cost = new ceres::DynamicAutoDiffCostFunction<CurveResidual, 4>(new CurveResidual{&e, &s, peak, N, o.lateral});
     cost->AddParameterBlock(N);
     cost->AddParameterBlock(N);
     cost->AddParameterBlock(1);
@@ -120,7 +204,7 @@ HyperfoamFit fit_hyperfoam(const ElasticCurve& curve, const HyperfoamFitOptions&
     ceres::Problem problem;
     problem.AddResidualBlock(cost, nullptr, mu.data(), alpha.data(), nu.data());
     for (int i = 0; i < N; ++i) {
-      if (positive_mu) problem.SetParameterLowerBound(mu.data(), i, 0.0);
+      if (start.non_negative) problem.SetParameterLowerBound(mu.data(), i, 0.0);
       problem.SetParameterLowerBound(alpha.data(), i, alpha[i] > 0 ? 0.2 : -o.alpha_max);
       problem.SetParameterUpperBound(alpha.data(), i, alpha[i] > 0 ? o.alpha_max : -0.2);
     }
@@ -130,39 +214,42 @@ HyperfoamFit fit_hyperfoam(const ElasticCurve& curve, const HyperfoamFitOptions&
     } else {
       problem.SetParameterBlockConstant(nu.data());
     }
-    const ceres::Solver::Options so =
-        dense_fit_options({o.function_tolerance, o.gradient_tolerance, o.parameter_tolerance, o.max_iterations});
     ceres::Solver::Summary summary;
     ceres::Solve(so, &problem, &summary);
-    ++fit.starts;
-    if (summary.IsSolutionUsable() && std::isfinite(summary.final_cost))
-      candidates.push_back({summary.final_cost, mu, alpha, nu[0]});
+    ++fit.polishes;
+    bool polished = summary.IsSolutionUsable() && std::isfinite(summary.final_cost);
+    for (double m : mu) polished = polished && std::isfinite(m);
+    if (polished) finals.push_back({summary.final_cost, mu, alpha, nu[0], start.non_negative});
+    // The start itself (cost on all points) as a fallback when the polish turns unstable.
+    finals.push_back({full_cost(start.mu, start.alpha, start.nu), start.mu, start.alpha, start.nu, start.non_negative});
   }
-  if (candidates.empty()) throw std::runtime_error("fit_hyperfoam: no start converged");
-  std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) { return a.cost < b.cost; });
+  std::stable_sort(finals.begin(), finals.end(), [](const Candidate& a, const Candidate& b) { return a.cost < b.cost; });
 
-  auto to_terms = [](const Candidate& c) {
-    std::vector<material::HyperfoamTerm> t;
-    for (std::size_t i = 0; i < c.mu.size(); ++i) t.push_back({c.mu[i], c.alpha[i], c.nu});
-    return t;
-  };
+  // 3. The best Drucker-stable candidate.
   const Candidate* chosen = nullptr;
-  for (const auto& c : candidates) {
-    const material::Hyperfoam model(to_terms(c));
-    if (material::check_stability(model, -e_max, o.stability_tension).stable()) {
+  for (const auto& c : finals) {
+    if (stable(c.mu, c.alpha, c.nu)) {
       chosen = &c;
       break;
     }
     ++fit.rejected_unstable;
   }
-  fit.stable = chosen != nullptr;
   if (!chosen) {
-    chosen = &candidates.front();
-    fit.warnings.push_back("no Drucker-stable fit over nominal strain [" + std::to_string(-e_max) + ", " +
-                           std::to_string(o.stability_tension) + "]: returning the best (unstable) fit");
-  } else if (fit.rejected_unstable > 0) {
-    fit.warnings.push_back(std::to_string(fit.rejected_unstable) + " better fit(s) rejected as Drucker-unstable");
+    std::ostringstream msg;
+    msg << "fit_hyperfoam: no Drucker-stable " << N << "-term fit over nominal strain [" << -e_max << ", "
+        << o.stability_tension << "]: tried " << combos.size() << " exponent subsets of {" << join(grid) << "} at nu {"
+        << join(nus) << "} with mu_i >= 0 and free mu_i, and " << fit.polishes << " polishes; all "
+        << finals.size() << " candidates unstable (is the elastic curve increasing with compression?)";
+    throw std::runtime_error(msg.str());
   }
+  fit.stable = true;
+  if (fit.rejected_unstable > 0)
+    fit.warnings.push_back(std::to_string(fit.rejected_unstable) + " better fit(s) rejected as Drucker-unstable");
+  auto to_terms = [&](const Candidate& c) {
+    std::vector<material::HyperfoamTerm> t;
+    for (int i = 0; i < N; ++i) t.push_back({c.mu[i] * peak, c.alpha[i], c.nu});
+    return t;
+  };
   fit.terms = to_terms(*chosen);
   fit.nu = chosen->nu;
   const auto model = hyperfoam_uniaxial_stress(fit.terms, fit.nu, o.lateral, e);

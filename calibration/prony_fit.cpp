@@ -26,6 +26,9 @@ Eigen::MatrixXd design(const DynamicModuli& d, const std::vector<double>& tau) {
 }
 
 
+PronyFit finish(PronyFit fit, const Eigen::VectorXd& x, const Eigen::MatrixXd& A, const Eigen::VectorXd& ones,
+                const DynamicModuli& d, const std::vector<double>& tau, bool fixed);
+
 }  // namespace
 
 /// Non-negative least squares min |A x - b| s.t. x >= 0 by the Lawson-Hanson active-set method
@@ -99,7 +102,7 @@ DynamicModuli prony_moduli(double E_inf, const std::vector<double>& E, const std
   return d;
 }
 
-PronyFit fit_prony(const DynamicModuli& d, const std::vector<double>& tau) {
+PronyFit fit_prony(const DynamicModuli& d, const std::vector<double>& tau, std::optional<double> E_inf_fixed) {
   const std::size_t M = d.frequency.size();
   if (M < 3 || d.storage.size() != M || d.loss.size() != M)
     throw std::invalid_argument("fit_prony: need at least 3 frequencies with storage and loss moduli");
@@ -110,19 +113,47 @@ PronyFit fit_prony(const DynamicModuli& d, const std::vector<double>& tau) {
   for (double t : tau)
     if (!(t > 0.0)) throw std::invalid_argument("fit_prony: relaxation times must be positive");
 
-  const Eigen::MatrixXd A = design(d, tau);
-  const Eigen::VectorXd ones = Eigen::VectorXd::Ones(A.rows());
+  if (E_inf_fixed && !(*E_inf_fixed >= 0.0 && std::isfinite(*E_inf_fixed)))
+    throw std::invalid_argument("fit_prony: the given E_inf must be finite and >= 0");
+  const Eigen::MatrixXd A_full = design(d, tau);
+  const Eigen::VectorXd ones = Eigen::VectorXd::Ones(A_full.rows());
+  if (E_inf_fixed) {
+    // E_inf given: fit E_r >= 0 to the rest (the E_inf column times E_inf moved to the target).
+    const Eigen::MatrixXd A = A_full.rightCols(A_full.cols() - 1);
+    const Eigen::VectorXd target = ones - A_full.col(0) * *E_inf_fixed;
+    Eigen::VectorXd scale = A.colwise().norm().transpose();
+    for (Eigen::Index j = 0; j < scale.size(); ++j) scale(j) = scale(j) > 0.0 ? scale(j) : 1.0;
+    Eigen::VectorXd Er = (A * scale.cwiseInverse().asDiagonal()).colPivHouseholderQr().solve(target).cwiseQuotient(scale);
+    PronyFit fit;
+    if (Er.minCoeff() < 0.0) {
+      fit.bounds_active = true;
+      Er = non_negative_least_squares(A, target);
+    }
+    Eigen::VectorXd x(A_full.cols());
+    x(0) = *E_inf_fixed;
+    x.tail(Er.size()) = Er;
+    return finish(fit, x, A_full, ones, d, tau, true);
+  }
+  const Eigen::MatrixXd& A = A_full;
   // Column scaling, then rank-revealing QR (the 100 s term at 1-20 Hz is nearly collinear with E_inf).
   Eigen::VectorXd scale = A.colwise().norm().transpose();
   for (Eigen::Index j = 0; j < scale.size(); ++j) scale(j) = scale(j) > 0.0 ? scale(j) : 1.0;
   Eigen::VectorXd x = (A * scale.cwiseInverse().asDiagonal()).colPivHouseholderQr().solve(ones).cwiseQuotient(scale);
 
   PronyFit fit;
-  fit.tau = tau;
   if (x.minCoeff() < 0.0) {
     fit.bounds_active = true;
     x = non_negative_least_squares(A, ones);
   }
+  return finish(fit, x, A, ones, d, tau, false);
+}
+
+namespace {
+PronyFit finish(PronyFit fit, const Eigen::VectorXd& x, const Eigen::MatrixXd& A, const Eigen::VectorXd& ones,
+                const DynamicModuli& d, const std::vector<double>& tau, bool fixed) {
+  const std::size_t M = d.frequency.size();
+  fit.tau = tau;
+  fit.E_inf_fixed = fixed;
   fit.E_inf = x(0);
   fit.E.assign(x.data() + 1, x.data() + x.size());
   fit.chi2 = (A * x - ones).squaredNorm();
@@ -144,5 +175,6 @@ PronyFit fit_prony(const DynamicModuli& d, const std::vector<double>& tau) {
   }
   return fit;
 }
+}  // namespace
 
 }  // namespace cushion::calibration

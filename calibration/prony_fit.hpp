@@ -7,7 +7,12 @@
 ///   chi2 = sum_i [ (E'(w_i)/Ebar'_i - 1)^2 + (E''(w_i)/Ebar''_i - 1)^2 ],
 /// linear in x = (E_inf, E_1..E_n) with x >= 0. Solved by rank-revealing QR; if that solution has a
 /// negative modulus, by the Lawson-Hanson active-set NNLS (exact; Eigen 3.4 has no NNLS module).
+/// From 1-20 Hz data the 100 s term and E_inf are not separable (both are storage-only there): the free fit
+/// may put everything into E_100 and return E_inf = 0 (then the paper's g_i sum to 1). Given `E_inf_fixed`
+/// (e.g. the hyperfoam's long-term tangent at the preload, which the conversion to the solver's relative
+/// moduli assumes anyway) only E_r >= 0 are fitted.
 #include <Eigen/Dense>
+#include <optional>
 #include <vector>
 
 namespace cushion::calibration {
@@ -38,6 +43,7 @@ struct PronyFit {
   std::vector<double> tau;      ///< T_r [s]
   double chi2 = 0.0;            ///< objective at the solution [-]
   bool bounds_active = false;   ///< the unconstrained solution had a negative modulus (NNLS path)
+  bool E_inf_fixed = false;     ///< E_inf was given, not fitted
   std::vector<PronyResidual> residuals;
 };
 
@@ -46,6 +52,7 @@ Eigen::VectorXd non_negative_least_squares(const Eigen::MatrixXd& A, const Eigen
 
 /// Fits (E_inf, E_r) for preset times tau [s]; throws std::invalid_argument on fewer than 3
 /// frequencies, non-positive frequency or moduli, or tau empty/non-positive.
-PronyFit fit_prony(const DynamicModuli& data, const std::vector<double>& tau = {0.01, 0.1, 1.0, 10.0, 100.0});
+PronyFit fit_prony(const DynamicModuli& data, const std::vector<double>& tau = {0.01, 0.1, 1.0, 10.0, 100.0},
+                   std::optional<double> E_inf_fixed = std::nullopt);
 
 }  // namespace cushion::calibration

@@ -154,7 +154,7 @@ struct InnerSolution {
   double cost = 0.0;
 };
 InnerSolution alternating(const std::vector<const TermBasis*>& terms, const Eigen::VectorXd& y, Eigen::VectorXd a,
-                          int iterations) {
+                          int iterations, bool non_negative_mu = false) {
   const std::size_t N = terms.size();
   const Eigen::Index R = y.size();
   InnerSolution s;
@@ -163,7 +163,7 @@ InnerSolution alternating(const std::vector<const TermBasis*>& terms, const Eige
   for (int it = 0; it < iterations; ++it) {
     Eigen::MatrixXd A(R, N);
     for (std::size_t j = 0; j < N; ++j) A.col(j) = terms[j]->B + terms[j]->Hm * a;
-    mu = least_squares(A, y);
+    mu = non_negative_mu ? non_negative_least_squares(A, y) : least_squares(A, y);
     Eigen::VectorXd base = Eigen::VectorXd::Zero(R);
     Eigen::MatrixXd Hm = Eigen::MatrixXd::Zero(R, a.size());
     for (std::size_t j = 0; j < N; ++j) {
@@ -304,26 +304,33 @@ RefitResult refit(const ViscoHyperfoam& start, const Specimen& specimen, const s
   const std::vector<double> a_start = long_term_ratios(start.prony);
   Eigen::VectorXd a0(M);
   for (std::size_t i = 0; i < M; ++i) a0(i) = std::max(0.0, a_start[i]);
+  // Each subset twice: mu free, and mu_i >= 0 (with nu >= 0 sufficient for Drucker stability, so that a
+  // stable candidate exists whenever the free optimum is unstable).
   struct Candidate {
     std::vector<double> x;
     double cost;
+    bool non_negative;
   };
-  std::vector<Candidate> candidates;
+  std::vector<Candidate> free_candidates, nn_candidates;
   for (const auto& combo : combos) {
     std::vector<const TermBasis*> terms;
     for (std::size_t k : combo) terms.push_back(&basis[k]);
-    const InnerSolution s = alternating(terms, y_screen, a0, options.alternating_iterations);
-    ++result.starts;
-    if (!std::isfinite(s.cost)) continue;
-    std::vector<double> x;
-    for (std::size_t j = 0; j < N; ++j) x.push_back(s.mu(j) / g.mu_scale);
-    for (std::size_t k : combo) x.push_back(grid[k]);
-    for (std::size_t i = 0; i < M; ++i) x.push_back(s.a(i));
-    candidates.push_back({x, s.cost});
+    for (const bool nn : {false, true}) {
+      const InnerSolution s = alternating(terms, y_screen, a0, options.alternating_iterations, nn);
+      ++result.starts;
+      if (!std::isfinite(s.cost) || !s.mu.allFinite() || (nn && !(s.mu.maxCoeff() > 0.0))) continue;
+      std::vector<double> x;
+      for (std::size_t j = 0; j < N; ++j) x.push_back(s.mu(j) / g.mu_scale);
+      for (std::size_t k : combo) x.push_back(grid[k]);
+      for (std::size_t i = 0; i < M; ++i) x.push_back(s.a(i));
+      (nn ? nn_candidates : free_candidates).push_back({x, s.cost, nn});
+    }
   }
-  std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) { return a.cost < b.cost; });
-  if (candidates.size() > std::size_t(std::max(1, options.polished_starts)))
-    candidates.resize(std::size_t(std::max(1, options.polished_starts)));
+  const std::size_t polished_starts = std::size_t(std::max(1, options.polished_starts));
+  for (auto* list : {&free_candidates, &nn_candidates}) {
+    std::stable_sort(list->begin(), list->end(), [](const Candidate& a, const Candidate& b) { return a.cost < b.cost; });
+    if (list->size() > polished_starts) list->resize(polished_starts);
+  }
 
   // 2. Joint polish of the best starts (automatic derivatives), 3. the best stable one.
   // Dogleg: LM crawled along the (mu, a) valley (5x more iterations).
@@ -336,50 +343,64 @@ RefitResult refit(const ViscoHyperfoam& start, const Specimen& specimen, const s
     bool usable, stable;
     std::string report;
   };
-  // Each polish is independent and deterministic: two at a time, each on its own thread.
-  std::vector<Polished> polished(candidates.size());
-  std::vector<int> iterations(candidates.size(), 0), evaluations(candidates.size(), 0);
-  auto polish = [&](std::size_t k) {
-    std::vector<double> x = candidates[k].x;
-    auto* cost = new ceres::DynamicAutoDiffCostFunction<JointResidual, 12>(new JointResidual{&g});
-    cost->AddParameterBlock(static_cast<int>(n));
-    cost->SetNumResiduals(static_cast<int>(R));
-    ceres::Problem problem;
-    problem.AddResidualBlock(cost, nullptr, x.data());
-    for (std::size_t j = 0; j < N; ++j) {
-      const bool negative = x[N + j] < 0.0;
-      problem.SetParameterLowerBound(x.data(), int(N + j), negative ? -50.0 : 0.2);
-      problem.SetParameterUpperBound(x.data(), int(N + j), negative ? -0.2 : 50.0);
-    }
-    for (std::size_t i = 2 * N; i < n; ++i) {
-      problem.SetParameterLowerBound(x.data(), int(i), 0.0);
-      problem.SetParameterUpperBound(x.data(), int(i), 1e3);
-    }
-    ceres::Solver::Summary summary;
-    ceres::Solve(so, &problem, &summary);
-    iterations[k] = static_cast<int>(summary.iterations.size());
-    evaluations[k] = summary.num_residual_evaluations + summary.num_jacobian_evaluations;
-    Polished p{x, summary.final_cost, summary.IsSolutionUsable(), false, summary.BriefReport()};
+  auto is_stable = [&](const std::vector<double>& x) {
     try {
       std::vector<material::HyperfoamTerm> terms;
       for (std::size_t j = 0; j < N; ++j) terms.push_back({x[j] * g.mu_scale, x[N + j], g.nu});
-      p.stable = material::check_stability(material::Hyperfoam(terms), -peak_strain, options.stability_tension).stable() &&
-                 material_problem(unpack(g, x)).empty();
+      return material::check_stability(material::Hyperfoam(terms), -peak_strain, options.stability_tension).stable() &&
+             material_problem(unpack(g, x)).empty();
     } catch (const std::exception&) {
-      p.stable = false;
+      return false;
     }
-    polished[k] = std::move(p);
   };
-  for (std::size_t k = 0; k < candidates.size(); k += 2) {
-    std::thread second;
-    if (k + 1 < candidates.size()) second = std::thread(polish, k + 1);
-    polish(k);
-    if (second.joinable()) second.join();
-  }
-  for (std::size_t k = 0; k < candidates.size(); ++k) {
-    result.iterations += iterations[k];
-    result.evaluations += evaluations[k];
-  }
+  // Each polish is independent and deterministic: two at a time, each on its own thread. First the best
+  // free-mu starts; if none of them ends Drucker-stable, the best mu >= 0 starts (bounded polish).
+  std::vector<Polished> polished;
+  auto polish_all = [&](const std::vector<Candidate>& candidates) {
+    std::vector<Polished> out(candidates.size());
+    std::vector<int> iterations(candidates.size(), 0), evaluations(candidates.size(), 0);
+    auto polish = [&](std::size_t k) {
+      std::vector<double> x = candidates[k].x;
+      auto* cost = new ceres::DynamicAutoDiffCostFunction<JointResidual, 12>(new JointResidual{&g});
+      cost->AddParameterBlock(static_cast<int>(n));
+      cost->SetNumResiduals(static_cast<int>(R));
+      ceres::Problem problem;
+      problem.AddResidualBlock(cost, nullptr, x.data());
+      for (std::size_t j = 0; j < N; ++j) {
+        const bool negative = x[N + j] < 0.0;
+        problem.SetParameterLowerBound(x.data(), int(N + j), negative ? -50.0 : 0.2);
+        problem.SetParameterUpperBound(x.data(), int(N + j), negative ? -0.2 : 50.0);
+        if (candidates[k].non_negative) problem.SetParameterLowerBound(x.data(), int(j), 0.0);
+      }
+      for (std::size_t i = 2 * N; i < n; ++i) {
+        problem.SetParameterLowerBound(x.data(), int(i), 0.0);
+        problem.SetParameterUpperBound(x.data(), int(i), 1e3);
+      }
+      ceres::Solver::Summary summary;
+      ceres::Solve(so, &problem, &summary);
+      iterations[k] = static_cast<int>(summary.iterations.size());
+      evaluations[k] = summary.num_residual_evaluations + summary.num_jacobian_evaluations;
+      out[k] = Polished{x, summary.final_cost, summary.IsSolutionUsable(), is_stable(x), summary.BriefReport()};
+    };
+    for (std::size_t k = 0; k < candidates.size(); k += 2) {
+      std::thread second;
+      if (k + 1 < candidates.size()) second = std::thread(polish, k + 1);
+      polish(k);
+      if (second.joinable()) second.join();
+    }
+    for (std::size_t k = 0; k < candidates.size(); ++k) {
+      result.iterations += iterations[k];
+      result.evaluations += evaluations[k];
+    }
+    polished.insert(polished.end(), out.begin(), out.end());
+  };
+  auto any_stable = [&] {
+    for (const auto& p : polished)
+      if (p.usable && p.stable) return true;
+    return false;
+  };
+  polish_all(free_candidates);
+  if (!any_stable()) polish_all(nn_candidates);
   std::stable_sort(polished.begin(), polished.end(), [](const Polished& a, const Polished& b) {
     if (a.usable != b.usable) return a.usable;
     if (a.stable != b.stable) return a.stable;
@@ -401,6 +422,24 @@ RefitResult refit(const ViscoHyperfoam& start, const Specimen& specimen, const s
   const material::Hyperfoam refitted(result.material.terms);
   result.stable = material::check_stability(refitted, -peak_strain, options.stability_tension).stable();
   result.stability = material::check_stability(refitted).summary();
+  {
+    std::vector<std::string> why;
+    if (!result.converged) why.push_back("no polish gave a usable solution (" + result.report + ")");
+    if (!result.stable) {
+      const auto required = material::check_stability(refitted, -peak_strain, options.stability_tension);
+      std::string modes;
+      for (const auto& m : required.modes)
+        if (m.first_unstable_compression || m.first_unstable_tension)
+          modes += (modes.empty() ? "" : ", ") + material::to_string(m.mode) +
+                   (m.first_unstable_compression ? " from compression " + std::to_string(*m.first_unstable_compression) : "") +
+                   (m.first_unstable_tension ? " from tension " + std::to_string(*m.first_unstable_tension) : "");
+      why.push_back("the refitted hyperfoam is Drucker-unstable within nominal strain [" + std::to_string(-peak_strain) + ", " +
+                    std::to_string(options.stability_tension) + "]" + (modes.empty() ? "" : " (" + modes + ")"));
+    }
+    if (!result.improved)
+      why.push_back("no improvement: joint cost " + std::to_string(result.cost_start) + " -> " + std::to_string(result.cost));
+    for (const auto& w : why) result.rejection += (result.rejection.empty() ? "" : "; ") + w;
+  }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();
   return result;
 }

@@ -18,7 +18,9 @@
 ///   2. polish: the best `polished_starts` of them, all parameters jointly, Ceres bounded trust region
 ///      (dogleg) with automatic derivatives (ceres::Jet), bounds a_i >= 0, alpha_i keeps its
 ///      sign with 0.2 <= |alpha_i| <= 50;
-///   3. the lowest-cost polished result whose hyperfoam is Drucker-stable over the tested range is returned.
+///   Each subset is solved twice: mu free and mu_i >= 0 (NNLS; with nu >= 0 sufficient for Drucker stability);
+///   3. the lowest-cost polished result whose hyperfoam is Drucker-stable over the tested range is returned;
+///      the free-mu starts are polished first, the mu >= 0 ones (bounded polish) when none of those ends stable.
 #include <optional>
 #include <string>
 #include <vector>
@@ -52,6 +54,7 @@ struct RefitResult {
   double seconds = 0.0;
   std::string stability;   ///< check_stability summary of the refitted hyperfoam
   std::string report;      ///< Ceres brief report
+  std::string rejection;   ///< why not accepted: never empty when !accepted(), empty when accepted()
   bool accepted() const { return converged && stable && improved; }
 };
 

@@ -66,9 +66,19 @@ json prony_fit_json(const PronyFit& prony) {
           {"chi2", prony.chi2}, {"bounds_active", prony.bounds_active}, {"residuals", res}};
 }
 
+/// A figure that could not be computed: "n/a (reason)" (never NaN in the report).
+json not_available(const std::string& reason) { return json("n/a (" + reason + ")"); }
+
 /// Step 7: relative moduli in both normalisations and the solver's error with each.
 json conversion_json(const FitResult& R) {
   const PronyConversion& c = R.conversion;
+  // One normalisation: relative moduli, long-term factor and the solver's error (or why there is none).
+  auto normalisation = [](json g, const auto& a, const std::string& failure, const auto& dynamic, const auto& quasi_static) {
+    json n{{"g", std::move(g)}, {"a_long_term", a}};
+    n["dynamic"] = failure.empty() ? dynamic_json(dynamic) : not_available(failure);
+    n["quasi_static"] = failure.empty() ? quasi_static_json(quasi_static) : not_available(failure);
+    return n;
+  };
   auto gs = [](const std::vector<material::PronyTerm>& p) {
     json a = json::array();
     for (const auto& t : p) a.push_back(t.g);
@@ -78,12 +88,10 @@ json conversion_json(const FitResult& R) {
       {"E_inf_kPa", c.E_inf * 1e3}, {"E_0_kPa", c.E_0 * 1e3}, {"preload_strain", c.preload.preload},
       {"K_hf_kPa", c.preload.K_hf * 1e3}, {"K_v_kPa", c.preload.K_v * 1e3}, {"S11_kPa", c.preload.S11 * 1e3},
       {"preload_stress_kPa", c.preload.stress * 1e3},
-      {"paper", {{"g", gs(c.paper)}, {"a_long_term", c.a_paper},
-                 {"dynamic", dynamic_json(R.dynamic_normalisation_paper)},
-                 {"quasi_static", quasi_static_json(R.quasi_static_normalisation_paper)}}},
-      {"tangent", {{"g", gs(c.tangent)}, {"a_long_term", c.a_tangent},
-                   {"dynamic", dynamic_json(R.dynamic_normalisation_tangent)},
-                   {"quasi_static", quasi_static_json(R.quasi_static_normalisation_tangent)}}},
+      {"paper", normalisation(gs(c.paper), c.a_paper, R.normalisation_failure_paper, R.dynamic_normalisation_paper,
+                              R.quasi_static_normalisation_paper)},
+      {"tangent", normalisation(gs(c.tangent), c.a_tangent, R.normalisation_failure_tangent,
+                                R.dynamic_normalisation_tangent, R.quasi_static_normalisation_tangent)},
       {"chosen", to_string(R.run_normalisation)}};
 }
 
@@ -101,8 +109,10 @@ json refit_json(const RefitResult& f) {
 json tests_json(const FitResult& R) {
   json tests = json::array();
   for (const auto& t : R.comparisons) {
-    json e{{"name", t.name}, {"kind", t.kind}, {"use", t.use}, {"error_paper", t.error_paper}};
-    if (R.refit) e["error_refit"] = t.error_refit;
+    // A failed prediction: "n/a (reason)" instead of a number.
+    auto error = [](double x, const std::string& failure) { return failure.empty() ? json(x) : not_available(failure); };
+    json e{{"name", t.name}, {"kind", t.kind}, {"use", t.use}, {"error_paper", error(t.error_paper, t.failure_paper)}};
+    if (R.refit) e["error_refit"] = error(t.error_refit, t.failure_refit);
     e["error_measure"] = t.kind == "quasi_static" ? "RMS(model - measured)/peak stress" : "RMS of |E*| relative error";
     if (t.quasi_static_paper) e["paper"] = quasi_static_json(*t.quasi_static_paper);
     if (t.quasi_static_refit) e["refit"] = quasi_static_json(*t.quasi_static_refit);
@@ -148,6 +158,9 @@ nlohmann::json report_json(const FitResult& R, const Campaign& campaign) {
                     {"starts", R.hyperfoam.starts}, {"rejected_unstable", R.hyperfoam.rejected_unstable},
                     {"warnings", R.hyperfoam.warnings}};
   j["prony"] = prony_fit_json(R.prony);
+  j["prony"]["E_inf_from_hyperfoam"] = R.prony.E_inf_fixed;
+  j["prony"]["paper_free_E_inf"] = {
+      {"E_inf_kPa", R.prony_free.E_inf * 1e3}, {"E_kPa", kpa(R.prony_free.E)}, {"chi2", R.prony_free.chi2}};
   j["conversion"] = conversion_json(R);
   j["material_paper"] = material_json(R.paper_material);
   if (R.refit) j["refit"] = refit_json(*R.refit);

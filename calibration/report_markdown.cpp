@@ -1,3 +1,4 @@
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 
@@ -8,6 +9,7 @@ namespace cushion::calibration {
 namespace {
 
 std::string pct(double x) {
+  if (!std::isfinite(x)) return "n/a";
   std::ostringstream o;
   o << std::fixed << std::setprecision(2) << 100.0 * x << " %";
   return o.str();
@@ -143,8 +145,9 @@ void comparison_section(std::ostringstream& o, const FitResult& R) {
   o << "| test | use | error measure | paper | refit |\n|---|---|---|---|---|\n";
   for (const auto& t : R.comparisons)
     o << "| " << t.name << " | " << t.use << " | "
-      << (t.kind == "quasi_static" ? "RMS(model - test) / peak" : "RMS of |E*| relative error") << " | " << pct(t.error_paper)
-      << " | " << (R.refit ? pct(t.error_refit) : std::string("-")) << " |\n";
+      << (t.kind == "quasi_static" ? "RMS(model - test) / peak" : "RMS of |E*| relative error") << " | "
+      << (t.failure_paper.empty() ? pct(t.error_paper) : "n/a (" + t.failure_paper + ")") << " | "
+      << (R.refit ? (t.failure_refit.empty() ? pct(t.error_refit) : "n/a (" + t.failure_refit + ")") : std::string("-")) << " |\n";
   o << "\nDefault material (`material.json`): **" << (R.default_choice == DefaultMaterial::paper ? "paper" : "refit")
     << "** - " << R.default_reason << ".\n";
 }
