@@ -101,7 +101,8 @@ nlohmann::json base_json(const BaseFoam& foam) {
                    {"stress_75_kPa", foam.elastic_stress_kPa(0.75)},
                    {"prony_sum_g", foam.prony_sum()},
                    {"form", "s_e = -sum 2 mu_i/alpha_i (l^(alpha_i-1) - 1/l), l = 1 - e (nu = 0); "
-                            "s = s_e + sum h_j, h_j <- exp(-x) h_j + a_j (1 - exp(-x))/x ds_e, x = dt/tau_j, a_j = g_j/(1 - sum g)"}};
+                            "s = l (s_e/l + sum h_j), h_j <- exp(-x) h_j + a_j (1 - exp(-x))/x d(s_e/l), x = dt/tau_j, "
+                            "a_j = g_j/(1 - sum g)"}};
   j["hyperfoam"] = nlohmann::json::array();
   for (const auto& t : foam.hyperfoam) j["hyperfoam"].push_back({{"mu_kPa", t.mu_kPa}, {"alpha", t.alpha}});
   j["prony"] = nlohmann::json::array();

@@ -8,8 +8,9 @@
 ///   Tension-positive nominal stress:   P(l) = dW/dl = sum_i 2 mu_i/alpha_i (l^(alpha_i - 1) - l^-1)
 ///   Compressive nominal stress:        s_e(e) = -P(1 - e) = dW/de  (> 0 in compression for mu_i > 0,
 ///                                      any sign of alpha_i; monotone in e for mu_i > 0)
-///   Viscoelasticity (FEBio decorator form on the elastic stress, 1D):
-///     s = s_e + sum_j h_j,  h_j(t+dt) = exp(-dt/tau_j) h_j + a_j (1 - exp(-x))/x (s_e(t+dt) - s_e(t)),
+///   Viscoelasticity (FEBio decorator form on the elastic second Piola-Kirchhoff stress S_e = s_e/l, 1D;
+///   foreign_machine.cpp):
+///     s = l (S_e + sum_j h_j),  h_j(t+dt) = exp(-dt/tau_j) h_j + a_j (1 - exp(-x))/x (S_e(t+dt) - S_e(t)),
 ///     x = dt/tau_j, a_j = g_j/(1 - sum g): g_j are the usual relative Prony moduli (fractions of the
 ///     instantaneous modulus, sum g < 1; drawn with sum g 0.2-0.6), a_j the same weights on the LONG-TERM
 ///     stress s_e (relaxed stress s_e, instantaneous s_e/(1 - sum g)).

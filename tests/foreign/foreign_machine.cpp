@@ -25,7 +25,7 @@ int substeps_for(double distance_mm) {
 }  // namespace
 
 FoamSpecimen::FoamSpecimen(const BaseFoam& foam, const std::vector<EffectSpec>& effects)
-    : foam_(foam), prony_kPa_(foam.prony.size(), 0.0) {
+    : foam_(foam), prony_pk2_kPa_(foam.prony.size(), 0.0) {
   for (const auto& e : effects) effects_.push_back(make_effect(e, foam));
 }
 
@@ -34,17 +34,21 @@ double FoamSpecimen::step(double strain_new, double dt_s) {
   const Increment inc{dt_s, strain_, strain_new};
   double elastic_kPa = foam_.elastic_stress_kPa(strain_new);
   for (auto& e : effects_) elastic_kPa = e->soften_kPa(inc, elastic_kPa);
-  double stress_kPa = elastic_kPa;
-  for (std::size_t j = 0; j < prony_kPa_.size(); ++j) {
+  // Decorator on the second Piola-Kirchhoff stress S = s/l (F = diag(l, 1, 1)); nominal s = l S.
+  const double stretch = 1.0 - strain_new;
+  const double elastic_pk2_kPa = elastic_kPa / stretch;
+  double viscous_pk2_kPa = 0.0;
+  for (std::size_t j = 0; j < prony_pk2_kPa_.size(); ++j) {
     double a = foam_.decorator_weight(j);
     for (const auto& e : effects_) a *= e->prony_factor(j, inc);
     const double x = dt_s / foam_.prony[j].tau_s;
-    prony_kPa_[j] = std::exp(-x) * prony_kPa_[j] + a * relaxation_average(x) * (elastic_kPa - elastic_kPa_);
-    stress_kPa += prony_kPa_[j];
+    prony_pk2_kPa_[j] = std::exp(-x) * prony_pk2_kPa_[j] + a * relaxation_average(x) * (elastic_pk2_kPa - elastic_pk2_kPa_);
+    viscous_pk2_kPa += prony_pk2_kPa_[j];
   }
+  double stress_kPa = elastic_kPa + stretch * viscous_pk2_kPa;
   for (auto& e : effects_) stress_kPa += e->extra_stress_kPa(inc);
   strain_ = strain_new;
-  elastic_kPa_ = elastic_kPa;
+  elastic_pk2_kPa_ = elastic_pk2_kPa;
   return stress_kPa;
 }
 

@@ -4,8 +4,9 @@
 ///
 /// Specimen: a cube (80 mm), uniaxial compression with zero lateral contraction; nominal strain
 /// e = u/H, nominal stress s = F/A, compression positive; force [N] = stress [kPa] x A [mm^2] x 1e-3.
-/// Step of the foam (FoamSpecimen::step): s_e virgin -> softened by mullins forms -> Prony decorator with
-/// weights a_j = g_j/(1 - sum g) x the strain_dependent_prony factors at the increment's midpoint strain -> plus the
+/// Step of the foam (FoamSpecimen::step): s_e virgin -> softened by mullins forms -> Prony decorator (FEBio
+/// form: on the second Piola-Kirchhoff stress S_e = s_e/l, s = l (S_e + sum h_j)) with weights
+/// a_j = g_j/(1 - sum g) x the strain_dependent_prony factors at the increment's midpoint strain -> plus the
 /// extra stresses (pneumatic, friction, stiffness_damping forms). Each test starts on a virgin, relaxed
 /// specimen.
 /// Quasi-static test: constant crosshead speed to max_strain, hold, back at the same speed; the platen
@@ -54,8 +55,8 @@ class FoamSpecimen {
  private:
   const BaseFoam& foam_;
   std::vector<std::unique_ptr<Effect>> effects_;
-  std::vector<double> prony_kPa_;
-  double strain_ = 0.0, elastic_kPa_ = 0.0;
+  std::vector<double> prony_pk2_kPa_;   ///< h_j on the second Piola-Kirchhoff stress
+  double strain_ = 0.0, elastic_pk2_kPa_ = 0.0;
 };
 
 struct QuasiStaticProtocol {
