@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Confusion-matrix benchmark of `cushion diagnose` on FOREIGN campaigns (issue 15, part 5); not a ctest.
 #
-#   tools/bench_diagnose.sh [N] [OUT]        N campaigns (default 60), results in OUT (default bench_diagnose)
+#   tools/bench_diagnose.sh [N] [OUT]        N campaigns (default 60), results in OUT (default results/bench_diagnose, git-ignored)
 #   env: SEED (2025), PAIRS and CONTROLS (default round(N/6) each), JOBS (campaigns at a time, 2),
 #        THREADS (diagnose --threads per campaign, 1), DYNAMIC_NOISE (amplitude|reading, amplitude)
 #
@@ -17,7 +17,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 N=${1:-60}
-OUT=${2:-bench_diagnose}
+OUT=${2:-results/bench_diagnose}
 SEED=${SEED:-2025}
 PAIRS=${PAIRS:-$(( (N + 3) / 6 ))}
 CONTROLS=${CONTROLS:-$(( (N + 3) / 6 ))}
