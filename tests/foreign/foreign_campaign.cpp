@@ -1,0 +1,318 @@
+// Test-data generation for the diagnose benchmark, independent of cushion's material/ and calibration/:
+// truths, effect scaling against the noise, and campaign files in cushion's format (written with std
+// streams and nlohmann-json; nothing of cushion's io/ is used).
+#include "foreign_campaign.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+namespace foreign_bench {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct PlanRecords {
+  std::vector<QuasiStaticRecord> quasi_static;
+  std::vector<DynamicRecord> dynamic;
+};
+
+PlanRecords simulate_noise_free(const BaseFoam& foam, const std::vector<EffectSpec>& effects, const TestPlan& plan) {
+  PlanRecords r;
+  for (const auto& p : plan.quasi_static) r.quasi_static.push_back(run_quasi_static(foam, effects, plan.specimen, p));
+  for (const auto& p : plan.dynamic) r.dynamic.push_back(run_dynamic(foam, effects, plan.specimen, p, plan.noise, nullptr));
+  return r;
+}
+
+double rms(const std::vector<double>& v) {
+  double s = 0.0;
+  for (double x : v) s += x * x;
+  return v.empty() ? 0.0 : std::sqrt(s / v.size());
+}
+
+double quasi_static_ratio(const QuasiStaticRecord& base, const QuasiStaticRecord& with, const NoiseModel& noise) {
+  const std::size_t n = std::min(base.force_N.size(), with.force_N.size());
+  std::vector<double> difference_N(n), sd_N(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    difference_N[k] = with.force_N[k] - base.force_N[k];
+    sd_N[k] = noise.force_sd_N(base.force_N[k]);
+  }
+  return rms(difference_N) / rms(sd_N);
+}
+
+double dynamic_ratio(const DynamicRecord& base, const DynamicRecord& with) {
+  const std::size_t n = base.frequency_Hz.size();
+  std::vector<double> d_modulus(n), sd_modulus(n), d_phase(n), sd_phase(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    d_modulus[i] = with.dynamic_modulus_kPa[i] - base.dynamic_modulus_kPa[i];
+    d_phase[i] = with.phase_deg[i] - base.phase_deg[i];
+    sd_modulus[i] = base.modulus_sd_kPa(i);
+    sd_phase[i] = base.phase_sd_deg(i);
+  }
+  return std::max(rms(d_modulus) / rms(sd_modulus), rms(d_phase) / rms(sd_phase));
+}
+
+std::map<std::string, double> ratios_between(const PlanRecords& base, const PlanRecords& with, const TestPlan& plan) {
+  std::map<std::string, double> out;
+  for (std::size_t i = 0; i < plan.quasi_static.size(); ++i)
+    out[plan.quasi_static[i].name] = quasi_static_ratio(base.quasi_static[i], with.quasi_static[i], plan.noise);
+  for (std::size_t i = 0; i < plan.dynamic.size(); ++i)
+    out[plan.dynamic[i].name] = dynamic_ratio(base.dynamic[i], with.dynamic[i]);
+  return out;
+}
+
+std::string join(const std::vector<std::string>& items, const std::string& separator) {
+  std::string s;
+  for (std::size_t i = 0; i < items.size(); ++i) s += (i ? separator : "") + items[i];
+  return s;
+}
+
+void write_csv(const fs::path& file, const std::vector<std::string>& comments, const std::vector<std::string>& columns,
+               const std::vector<const std::vector<double>*>& data) {
+  std::ofstream out(file);
+  if (!out) throw std::runtime_error("cannot write " + file.string());
+  for (const auto& c : comments) out << "# " << c << "\n";
+  out << join(columns, ",") << "\n" << std::setprecision(10);
+  for (std::size_t k = 0; k < data.front()->size(); ++k) {
+    for (std::size_t c = 0; c < data.size(); ++c) out << (c ? "," : "") << (*data[c])[k];
+    out << "\n";
+  }
+  if (!out) throw std::runtime_error("error writing " + file.string());
+}
+
+void write_json(const fs::path& file, const nlohmann::json& j) {
+  std::ofstream out(file);
+  out << j.dump(2) << "\n";
+  if (!out) throw std::runtime_error("error writing " + file.string());
+}
+
+nlohmann::json base_json(const BaseFoam& foam) {
+  nlohmann::json j{{"family", foam.family},
+                   {"density_kg_m3", foam.density_kg_m3},
+                   {"stress_50_kPa", foam.elastic_stress_kPa(0.5)},
+                   {"stress_75_kPa", foam.elastic_stress_kPa(0.75)},
+                   {"prony_sum_g", foam.prony_sum()},
+                   {"form", "s_e = -sum 2 mu_i/alpha_i (l^(alpha_i-1) - 1/l), l = 1 - e (nu = 0); "
+                            "s = l (s_e/l + sum h_j), h_j <- exp(-x) h_j + a_j (1 - exp(-x))/x d(s_e/l), x = dt/tau_j, "
+                            "a_j = g_j/(1 - sum g)"}};
+  j["hyperfoam"] = nlohmann::json::array();
+  for (const auto& t : foam.hyperfoam) j["hyperfoam"].push_back({{"mu_kPa", t.mu_kPa}, {"alpha", t.alpha}});
+  j["prony"] = nlohmann::json::array();
+  for (std::size_t k = 0; k < foam.prony.size(); ++k)
+    j["prony"].push_back({{"g", foam.prony[k].g}, {"a_long_term", foam.decorator_weight(k)}, {"tau_s", foam.prony[k].tau_s}});
+  return j;
+}
+
+}  // namespace
+
+TestPlan standard_plan() {
+  TestPlan plan;
+  for (double rate : {12.0, 120.0, 600.0}) {
+    QuasiStaticProtocol p;
+    p.name = "qs_" + std::to_string(static_cast<int>(rate));
+    p.rate_mm_min = rate;
+    p.sample_hz = rate > 300.0 ? 50.0 : 10.0;  // 0.2 mm a sample at 600 mm/min
+    p.use = rate == 120.0 ? "calibration" : "validation";
+    plan.quasi_static.push_back(p);
+  }
+  for (double preload : {0.25, 0.5}) {
+    DynamicProtocol p;
+    p.name = "dyn_" + std::to_string(static_cast<int>(std::lround(preload * 100)));
+    p.preload_strain = preload;
+    p.frequencies_Hz = {1, 1.5, 2, 3, 4, 6, 8, 11, 15, 20};
+    p.use = preload == 0.25 ? "calibration" : "validation";
+    plan.dynamic.push_back(p);
+  }
+  return plan;
+}
+
+std::map<std::string, double> effect_over_noise(const BaseFoam& foam, const std::vector<EffectSpec>& effects,
+                                                const TestPlan& plan) {
+  return ratios_between(simulate_noise_free(foam, {}, plan), simulate_noise_free(foam, effects, plan), plan);
+}
+
+double largest(const std::map<std::string, double>& ratios) {
+  double m = 0.0;
+  for (const auto& [name, r] : ratios) m = std::max(m, r);
+  return m;
+}
+
+EffectSpec scale_effect(EffectSpec shape, const BaseFoam& foam, const TestPlan& plan, double target) {
+  const EffectForm& form = find_form(shape.family, shape.form);
+  const PlanRecords base = simulate_noise_free(foam, {}, plan);
+  // f(x) = ln(largest ratio) - ln(target) at x = ln(magnitude): Illinois regula falsi on a bracket.
+  auto f = [&](double x) {
+    shape.parameters[form.magnitude] = std::exp(x);
+    const double r = largest(ratios_between(base, simulate_noise_free(foam, {shape}, plan), plan));
+    return std::log(std::max(r, 1e-300)) - std::log(target);
+  };
+  double a = std::log(form.magnitude_lo), b = std::log(form.magnitude_hi);
+  double fa = f(a), fb = f(b);
+  if (fa > 0.0 || fb < 0.0)
+    throw std::runtime_error(form.family + "/" + form.form + ": cannot reach " + std::to_string(target) +
+                             " x noise within the magnitude range");
+  const double tolerance = std::log(1.25);
+  int side = 0;
+  for (int iteration = 0; iteration < 60; ++iteration) {
+    double x = b - fb * (b - a) / (fb - fa);
+    x = std::clamp(x, a + 0.01 * (b - a), b - 0.01 * (b - a));
+    const double fx = f(x);
+    if (std::abs(fx) < tolerance) return shape;  // parameters hold exp(x)
+    if (fx > 0.0) {
+      b = x, fb = fx;
+      if (side == 1) fa *= 0.5;
+      side = 1;
+    } else {
+      a = x, fa = fx;
+      if (side == -1) fb *= 0.5;
+      side = -1;
+    }
+  }
+  throw std::runtime_error(form.family + "/" + form.form + ": scaling did not converge");
+}
+
+CampaignTruth draw_truth(const std::string& name, const CampaignKind& kind, std::uint64_t seed, const TestPlan& plan) {
+  CampaignTruth truth;
+  truth.name = name;
+  truth.seed = seed;
+  Random base_random(mix_seed(seed, 0));
+  truth.base = draw_base_foam(draw_base_family(base_random), base_random);
+  for (std::size_t k = 0; k < kind.families.size(); ++k) {
+    Random random(mix_seed(seed, 1 + k));
+    const EffectForm& form = find_form(kind.families[k], kind.forms[k]);
+    const double target = random.log_uniform(14.0, 36.0);
+    EffectSpec effect = scale_effect(draw_effect_shape(form, truth.base, random), truth.base, plan, target);
+    truth.effect_over_noise[effect.family] = effect_over_noise(truth.base, {effect}, plan);
+    add_derived_parameters(effect);
+    truth.equations.push_back(form.equation);
+    truth.effects.push_back(effect);
+  }
+  return truth;
+}
+
+void write_campaign(const CampaignTruth& truth, const TestPlan& plan, const fs::path& dir) {
+  fs::create_directories(dir);
+  const Specimen& sp = plan.specimen;
+  nlohmann::json manifest;
+  manifest["description"] = "SYNTHETIC campaign " + truth.name +
+                            " from foreign_campaigns (tests/foreign: a 1D test machine independent of cushion), seed " +
+                            std::to_string(truth.seed);
+  manifest["specimen"] = {{"length_mm", sp.length_mm}, {"width_mm", sp.width_mm}, {"thickness_mm", sp.thickness_mm},
+                          {"density_kg_m3", truth.base.density_kg_m3}};
+  manifest["tests"] = nlohmann::json::array();
+  std::uint64_t stream = 100;
+  for (const auto& p : plan.quasi_static) {
+    QuasiStaticRecord rec = run_quasi_static(truth.base, truth.effects, sp, p);
+    Random noise(mix_seed(truth.seed, stream++));
+    add_quasi_static_noise(rec, plan.noise, noise);
+    const std::string file = p.name + ".csv";
+    write_csv(dir / file, {"SYNTHETIC quasi-static record from foreign_campaigns: " + p.name, "compression positive"},
+              {"time_s", "displacement_mm", "force_N"}, {&rec.time_s, &rec.displacement_mm, &rec.force_N});
+    manifest["tests"].push_back({{"kind", "quasi_static"}, {"name", p.name}, {"file", file},
+                                 {"rate_mm_min", p.rate_mm_min}, {"lateral", "free"}, {"use", p.use}});
+  }
+  for (const auto& p : plan.dynamic) {
+    Random noise(mix_seed(truth.seed, stream++));
+    const DynamicRecord rec = run_dynamic(truth.base, truth.effects, sp, p, plan.noise, &noise);
+    const std::string file = p.name + ".csv";
+    write_csv(dir / file,
+              {"SYNTHETIC dynamic record from foreign_campaigns: " + p.name,
+               "nominal stress amplitude over nominal strain amplitude; phase of stress relative to strain"},
+              {"frequency_Hz", "dynamic_modulus_kPa", "phase_deg"},
+              {&rec.frequency_Hz, &rec.dynamic_modulus_kPa, &rec.phase_deg});
+    manifest["tests"].push_back({{"kind", "dynamic"}, {"name", p.name}, {"file", file},
+                                 {"preload_strain", p.preload_strain},
+                                 {"acceleration_amplitude_m_s2", p.acceleration_peak_to_peak_m_s2},
+                                 {"amplitude_is", "peak_to_peak"}, {"preload_rate_mm_min", p.preload_rate_mm_min},
+                                 {"use", p.use}});
+  }
+  write_json(dir / "campaign.json", manifest);
+
+  nlohmann::json t;
+  t["families"] = nlohmann::json::array();
+  t["forms"] = nlohmann::json::array();
+  t["parameters"] = nlohmann::json::object();
+  for (std::size_t k = 0; k < truth.effects.size(); ++k) {
+    const EffectSpec& e = truth.effects[k];
+    t["families"].push_back(e.family);
+    t["forms"].push_back(e.form);
+    nlohmann::json p{{"form", e.form}, {"equation", truth.equations[k]}};
+    for (const auto& [key, value] : e.parameters) p[key] = value;
+    p["effect_over_noise"] = truth.effect_over_noise.at(e.family);
+    t["parameters"][e.family] = p;
+  }
+  t["base"] = base_json(truth.base);
+  t["seed"] = truth.seed;
+  t["noise"] = {{"force_relative", plan.noise.force_relative},
+                {"force_floor_N", plan.noise.force_floor_N},
+                {"dynamic", plan.noise.dynamic_relative_to_reading ? "relative to the whole reading"
+                                                                    : "relative to the oscillating force amplitude"}};
+  t["generator"] = "foreign_campaigns (tests/foreign): own 1D forms, independent of cushion's material/ and calibration/";
+  write_json(dir / "truth.json", t);
+}
+
+std::vector<CampaignKind> campaign_mix(int count, int pairs, int controls, std::uint64_t seed) {
+  const int singles = count - pairs - controls;
+  if (count < 1 || pairs < 0 || controls < 0 || singles < 0)
+    throw std::invalid_argument("campaign_mix: need count >= pairs + controls >= 0");
+  const auto& families = effect_families();
+  std::vector<CampaignKind> kinds;
+  for (int i = 0; i < singles; ++i) {
+    const std::string& family = families[i % families.size()];
+    const auto forms = forms_of_family(family);
+    kinds.push_back({{family}, {forms[(i / families.size()) % forms.size()]->form}});
+  }
+  std::vector<std::pair<std::size_t, std::size_t>> family_pairs;
+  for (std::size_t a = 0; a < families.size(); ++a)
+    for (std::size_t b = a + 1; b < families.size(); ++b) family_pairs.push_back({a, b});
+  Random random(mix_seed(seed, 7777));
+  for (int k = 0; k < pairs; ++k) {
+    const auto [a, b] = family_pairs[k % family_pairs.size()];
+    CampaignKind kind;
+    for (std::size_t f : {a, b}) {
+      const auto forms = forms_of_family(families[f]);
+      kind.families.push_back(families[f]);
+      kind.forms.push_back(forms[random.index(forms.size())]->form);
+    }
+    kinds.push_back(kind);
+  }
+  for (int k = 0; k < controls; ++k) kinds.push_back({});
+  Random shuffle(mix_seed(seed, 9999));
+  for (std::size_t i = kinds.size(); i > 1; --i) std::swap(kinds[i - 1], kinds[shuffle.index(i)]);
+  return kinds;
+}
+
+void write_campaign_set(const fs::path& dir, int count, int pairs, int controls, std::uint64_t seed,
+                        const TestPlan& plan, std::ostream& log) {
+  fs::create_directories(dir);
+  const std::vector<CampaignKind> kinds = campaign_mix(count, pairs, controls, seed);
+  std::ofstream index(dir / "index.csv");
+  index << "campaign,families,forms\n";
+  for (std::size_t i = 0; i < kinds.size(); ++i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    std::ostringstream name;
+    name << "c" << std::setw(3) << std::setfill('0') << i;
+    const CampaignTruth truth = draw_truth(name.str(), kinds[i], mix_seed(seed, i), plan);
+    write_campaign(truth, plan, dir / name.str());
+    const std::string families = kinds[i].families.empty() ? "control" : join(kinds[i].families, "+");
+    const std::string forms = kinds[i].forms.empty() ? "-" : join(kinds[i].forms, "+");
+    index << name.str() << "," << families << "," << forms << "\n";
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    log << name.str() << ": " << families << " (" << forms << "), base " << truth.base.family << " "
+        << std::setprecision(3) << truth.base.density_kg_m3 << " kg/m3, s_e(50%) "
+        << truth.base.elastic_stress_kPa(0.5) << " kPa";
+    for (const auto& [family, ratios] : truth.effect_over_noise) log << ", " << family << " " << largest(ratios) << "x noise";
+    log << " (" << seconds << " s)\n";
+  }
+  if (!index) throw std::runtime_error("error writing " + (dir / "index.csv").string());
+}
+
+}  // namespace foreign_bench

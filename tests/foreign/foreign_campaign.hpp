@@ -1,0 +1,71 @@
+#pragma once
+/// Test-data generation for the diagnose benchmark (issue 15), INDEPENDENT of cushion's material/ and
+/// calibration/: seeded truths (base foam + 0, 1 or 2 effects), effects scaled to 10-50 x the noise, and
+/// campaigns written in cushion's campaign format (campaign.json + CSV; calibration/campaign.hpp describes
+/// the format, nothing of it is linked) with truth.json beside them.
+///
+/// Test plan: quasi-static 12, 120, 600 mm/min to 75 % and back (2 s hold; 10 Hz, 50 Hz at 600 mm/min so
+/// that a sample is 0.2 mm), dynamic at 25 % and 50 % preload (30 mm/min ramp, 5 s dwell,
+/// 0.25 m/s^2 peak-to-peak, 1-20 Hz, 20 cycles, last 10 fitted, 64 steps a cycle). "calibration":
+/// qs_120 and dyn_25; the rest "validation".
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "foreign_effects.hpp"
+#include "foreign_foam.hpp"
+#include "foreign_machine.hpp"
+
+namespace foreign_bench {
+
+struct TestPlan {
+  Specimen specimen;
+  NoiseModel noise;
+  std::vector<QuasiStaticProtocol> quasi_static;
+  std::vector<DynamicProtocol> dynamic;
+};
+
+TestPlan standard_plan();
+
+/// The effect's contribution per test over the noise level, from noise-free runs of the plan with and
+/// without `effects` (same base): quasi-static RMS(dF)/RMS(force sd) over the samples both records have;
+/// dynamic max(RMS(d|E*|)/RMS(sd |E*|), RMS(d phase)/RMS(sd phase)), sd from the force noise.
+std::map<std::string, double> effect_over_noise(const BaseFoam& foam, const std::vector<EffectSpec>& effects,
+                                                const TestPlan& plan);
+double largest(const std::map<std::string, double>& ratios);
+
+/// Rescales the form's magnitude parameter (log bisection/secant within its range) so that the effect
+/// alone is `target` x the noise in its most sensitive test (accepted within a factor 1.25).
+EffectSpec scale_effect(EffectSpec shape, const BaseFoam& foam, const TestPlan& plan, double target);
+
+struct CampaignKind {
+  std::vector<std::string> families, forms;  ///< empty: control
+};
+
+struct CampaignTruth {
+  std::string name;
+  std::uint64_t seed = 0;
+  BaseFoam base;
+  std::vector<EffectSpec> effects;
+  std::vector<std::string> equations;                          ///< per effect
+  std::map<std::string, std::map<std::string, double>> effect_over_noise;  ///< family -> test -> ratio
+};
+
+/// Seeded truth of a kind: base family drawn, each effect drawn and scaled alone to a target
+/// log-uniform in 14..36 x noise.
+CampaignTruth draw_truth(const std::string& name, const CampaignKind& kind, std::uint64_t seed, const TestPlan& plan);
+
+/// Writes DIR/campaign.json, the CSV files and DIR/truth.json (DIR created, overwritten).
+void write_campaign(const CampaignTruth& truth, const TestPlan& plan, const std::filesystem::path& dir);
+
+/// count campaigns: `pairs` of two families, `controls` without effect, the rest singles balanced over
+/// the families and, within a family, over its forms; shuffled with the seed.
+std::vector<CampaignKind> campaign_mix(int count, int pairs, int controls, std::uint64_t seed);
+
+/// Writes the whole set: DIR/c000 ... and DIR/index.csv (campaign, families, forms); logs one line each.
+void write_campaign_set(const std::filesystem::path& dir, int count, int pairs, int controls, std::uint64_t seed,
+                        const TestPlan& plan, std::ostream& log);
+
+}  // namespace foreign_bench

@@ -1,0 +1,62 @@
+// foreign_campaigns --out DIR --count N --seed S [--pairs P] [--controls C] [--dynamic-noise amplitude|reading]
+// Test-data generation for the diagnose benchmark (issue 15), independent of cushion's material/ and
+// calibration/: writes N seeded campaigns DIR/c000 ... in cushion's campaign format, each with truth.json,
+// and DIR/index.csv. Defaults: P = C = round(N/6). Deterministic for a seed.
+#include <cmath>
+#include <cstdlib>
+#include <exception>
+#include <iostream>
+#include <string>
+
+#include "foreign_campaign.hpp"
+
+namespace {
+
+int usage(const std::string& message) {
+  std::cerr << (message.empty() ? "" : "foreign_campaigns: " + message + "\n")
+            << "usage: foreign_campaigns --out DIR --count N --seed S [--pairs P] [--controls C]\n"
+               "                         [--dynamic-noise amplitude|reading]\n"
+               "  N campaigns DIR/c000... (P with two effect families, C controls without effect, the rest one\n"
+               "  family each, balanced over families and forms), each campaign.json + CSV + truth.json, and\n"
+               "  DIR/index.csv. Defaults: P = C = round(N/6); dynamic noise relative to the oscillating force.\n";
+  return message.empty() ? 0 : 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string out, dynamic_noise = "amplitude";
+  long count = -1, pairs = -1, controls = -1;
+  long long seed = -1;
+  try {
+    for (int i = 1; i < argc; ++i) {
+      const std::string a = argv[i];
+      if (a == "-h" || a == "--help") return usage("");
+      if (i + 1 >= argc) return usage("missing value after " + a);
+      const std::string v = argv[++i];
+      if (a == "--out") out = v;
+      else if (a == "--count") count = std::stol(v);
+      else if (a == "--seed") seed = std::stoll(v);
+      else if (a == "--pairs") pairs = std::stol(v);
+      else if (a == "--controls") controls = std::stol(v);
+      else if (a == "--dynamic-noise") dynamic_noise = v;
+      else return usage("unknown option " + a);
+    }
+  } catch (const std::exception&) {
+    return usage("bad number");
+  }
+  if (out.empty() || count < 1 || seed < 0) return usage("--out, --count >= 1 and --seed >= 0 are required");
+  if (dynamic_noise != "amplitude" && dynamic_noise != "reading") return usage("--dynamic-noise: amplitude or reading");
+  if (pairs < 0) pairs = std::lround(count / 6.0);
+  if (controls < 0) controls = std::lround(count / 6.0);
+  try {
+    foreign_bench::TestPlan plan = foreign_bench::standard_plan();
+    plan.noise.dynamic_relative_to_reading = dynamic_noise == "reading";
+    foreign_bench::write_campaign_set(out, static_cast<int>(count), static_cast<int>(pairs), static_cast<int>(controls),
+                                      static_cast<std::uint64_t>(seed), plan, std::cout);
+  } catch (const std::exception& e) {
+    std::cerr << "foreign_campaigns: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

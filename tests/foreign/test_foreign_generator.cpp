@@ -1,0 +1,154 @@
+// Test-data generation for the diagnose benchmark (issue 15), independent of cushion's material/ and
+// calibration/: checks of the foreign 1D test machine against closed forms (label `foreign`).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <map>
+#include <numbers>
+
+#include "foreign_campaign.hpp"
+
+namespace foreign_bench {
+namespace {
+
+BaseFoam sample_foam(const std::string& family, std::uint64_t seed) {
+  Random random(seed);
+  return draw_base_foam(family, random);
+}
+
+TEST(ForeignFoam, StressIsTheStrainDerivativeOfTheEnergyAndTangentItsDerivative) {
+  for (const std::string family : {"soft_plateau_50", "stiff_65", "random"})
+    for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+      const BaseFoam foam = sample_foam(family, seed);
+      const double stress_50 = foam.elastic_stress_kPa(0.5);
+      EXPECT_GE(stress_50, 1.0) << family;
+      EXPECT_LE(stress_50, 10.0) << family;
+      for (double e = 0.02; e <= 0.8; e += 0.06) {
+        const double h = 1e-6;
+        const double energy_fd = (foam.energy_kPa(e + h) - foam.energy_kPa(e - h)) / (2 * h);
+        const double stress_fd = (foam.elastic_stress_kPa(e + h) - foam.elastic_stress_kPa(e - h)) / (2 * h);
+        EXPECT_GT(foam.elastic_stress_kPa(e), 0.0) << family << " e = " << e;
+        EXPECT_NEAR(foam.elastic_stress_kPa(e), energy_fd, 1e-6 * std::abs(energy_fd)) << family << " e = " << e;
+        EXPECT_NEAR(foam.elastic_tangent_kPa(e), stress_fd, 1e-6 * std::abs(stress_fd)) << family << " e = " << e;
+      }
+    }
+}
+
+TEST(ForeignFoam, PronyRelaxationAfterAStepIsASumOfExponentials) {
+  const BaseFoam foam = sample_foam("stiff_65", 3);
+  FoamSpecimen specimen(foam, {});
+  const double e0 = 0.3, step_s = 1e-9;
+  specimen.step(e0, step_s);
+  const double elastic = foam.elastic_stress_kPa(e0);
+  double t = 0.0;
+  for (double dt : {0.001, 0.004, 0.02, 0.1, 0.5, 2.0, 10.0, 40.0, 150.0}) {
+    const double stress = specimen.step(e0, dt);
+    t += dt;
+    double expected = elastic;
+    for (const auto& p : foam.prony) expected += p.g / (1.0 - foam.prony_sum()) * elastic * std::exp(-t / p.tau_s);
+    EXPECT_NEAR(stress, expected, 1e-6 * elastic) << "t = " << t;
+  }
+}
+
+TEST(ForeignMachine, SineFitRecoversSineCosineOffsetAndDrift) {
+  const double f = 3.7, omega = 2 * std::numbers::pi * f;
+  std::vector<double> t, y;
+  for (int k = 0; k < 640; ++k) {
+    t.push_back(1.234 + k / (64.0 * f));
+    y.push_back(2.5 * std::sin(omega * t.back()) - 1.2 * std::cos(omega * t.back()) + 3.0 + 0.7 * t.back());
+  }
+  const SineFit fit = fit_sine(t, y, f);
+  EXPECT_NEAR(fit.sine, 2.5, 1e-9);
+  EXPECT_NEAR(fit.cosine, -1.2, 1e-9);
+  EXPECT_NEAR(fit.offset, 3.0, 1e-9);
+  EXPECT_NEAR(fit.drift, 0.7, 1e-9);
+  EXPECT_NEAR(std::abs(fit.phasor()), std::hypot(2.5, 1.2), 1e-9);
+}
+
+TEST(ForeignMachine, AcceleratedAmplitudeFollowsThePeakToPeakConvention) {
+  EXPECT_NEAR(displacement_amplitude_mm(0.25, 1.0), 3.1663, 1e-4);  // 0.125/(2 pi)^2 m
+  EXPECT_NEAR(displacement_amplitude_mm(0.25, 20.0), 3.1663 / 400.0, 1e-6);
+}
+
+TEST(ForeignMachine, PlatenLiftsOffWhenTheViscoelasticForceReachesZero) {
+  const TestPlan plan = standard_plan();
+  const BaseFoam foam = sample_foam("soft_plateau_50", 2);
+  const QuasiStaticProtocol fast = plan.quasi_static.back();  // 600 mm/min
+  const QuasiStaticRecord rec = run_quasi_static(foam, {}, plan.specimen, fast);
+  ASSERT_TRUE(rec.lifted_off);
+  double peak = 0.0;
+  for (double f : rec.force_N) peak = std::max(peak, f);
+  EXPECT_GT(rec.displacement_mm.back(), 0.1);   // the record ends before the crosshead is back
+  EXPECT_LT(rec.displacement_mm.back(), 60.0);
+  for (std::size_t k = 1; k < rec.force_N.size(); ++k) EXPECT_GT(rec.force_N[k], 0.0) << "sample " << k;
+  EXPECT_LT(rec.force_N.back(), 0.02 * peak);   // the force was about to reach zero
+  // One more sample of unloading would give a force <= 0: rerun the history past the end.
+  FoamSpecimen specimen(foam, {});
+  double u_prev = 0.0, t_prev = 0.0, last_stress = 1.0;
+  for (std::size_t k = 1; k < rec.time_s.size(); ++k) {
+    const int sub = 10;
+    for (int s = 1; s <= sub; ++s)
+      last_stress = specimen.step((u_prev + (rec.displacement_mm[k] - u_prev) * s / sub) / 80.0, (rec.time_s[k] - t_prev) / sub);
+    u_prev = rec.displacement_mm[k], t_prev = rec.time_s[k];
+  }
+  EXPECT_NEAR(plan.specimen.force_N(last_stress), rec.force_N.back(), 1e-9 * peak);
+  const double sample_mm = 0.2, sample_s = sample_mm / (fast.rate_mm_min / 60.0);
+  EXPECT_LE(specimen.step((u_prev - sample_mm) / 80.0, sample_s), 0.0);
+  // Without viscosity the platen stays in contact back to zero displacement.
+  BaseFoam elastic = foam;
+  elastic.prony.clear();
+  const QuasiStaticRecord back = run_quasi_static(elastic, {}, plan.specimen, fast);
+  EXPECT_FALSE(back.lifted_off);
+  EXPECT_NEAR(back.displacement_mm.back(), 0.0, 1e-12);
+  EXPECT_EQ(back.time_s.size(), 2 * 300 + 100 + 1);  // 0.2 mm a sample, 2 s hold at 50 Hz
+}
+
+TEST(ForeignMachine, FractionalBankGivesTheSpringPotModulus) {
+  // The bank is linear and additive: E*(with) - E*(without) = c (i w)^q.
+  const TestPlan plan = standard_plan();
+  const BaseFoam foam = sample_foam("stiff_65", 4);
+  const double c = 2.0, q = 0.45;
+  EffectSpec bank{"stiffness_damping", "fractional", {{"coefficient_kPa_s_pow_q", c}, {"order_q", q}}};
+  const DynamicProtocol& p = plan.dynamic.front();
+  const DynamicRecord without = run_dynamic(foam, {}, plan.specimen, p, plan.noise, nullptr);
+  const DynamicRecord with = run_dynamic(foam, {bank}, plan.specimen, p, plan.noise, nullptr);
+  for (std::size_t i = 0; i < p.frequencies_Hz.size(); ++i) {
+    auto phasor = [&](const DynamicRecord& r) { return std::polar(r.dynamic_modulus_kPa[i], r.phase_deg[i] * std::numbers::pi / 180); };
+    const std::complex<double> expected = c * std::pow(std::complex<double>(0, 2 * std::numbers::pi * p.frequencies_Hz[i]), q);
+    EXPECT_LT(std::abs(phasor(with) - phasor(without) - expected), 0.02 * std::abs(expected)) << p.frequencies_Hz[i] << " Hz";
+  }
+}
+
+TEST(ForeignCampaign, EveryFormIsScaledTo10To50TimesTheNoise) {
+  const TestPlan plan = standard_plan();
+  std::uint64_t seed = 11;
+  for (const auto& form : effect_forms()) {
+    const CampaignTruth truth = draw_truth("t", {{form.family}, {form.form}}, seed++, plan);
+    const double ratio = largest(truth.effect_over_noise.at(form.family));
+    EXPECT_GE(ratio, 10.0) << form.family << "/" << form.form;
+    EXPECT_LE(ratio, 50.0) << form.family << "/" << form.form;
+  }
+}
+
+TEST(ForeignCampaign, MixIsBalancedAndDeterministic) {
+  const auto kinds = campaign_mix(60, 10, 10, 5);
+  const auto again = campaign_mix(60, 10, 10, 5);
+  std::map<std::string, int> singles, forms;
+  int pairs = 0, controls = 0;
+  for (std::size_t i = 0; i < kinds.size(); ++i) {
+    EXPECT_EQ(kinds[i].forms, again[i].forms);
+    if (kinds[i].families.empty()) ++controls;
+    else if (kinds[i].families.size() == 2) {
+      ++pairs;
+      EXPECT_NE(kinds[i].families[0], kinds[i].families[1]);
+    } else ++singles[kinds[i].families[0]], ++forms[kinds[i].forms[0]];
+  }
+  EXPECT_EQ(pairs, 10);
+  EXPECT_EQ(controls, 10);
+  for (const auto& family : effect_families()) EXPECT_EQ(singles[family], 8) << family;
+  for (const auto& [form, n] : forms) EXPECT_GE(n, 2) << form;
+}
+
+}  // namespace
+}  // namespace foreign_bench

@@ -1,0 +1,173 @@
+#!/usr/bin/env bash
+# Confusion-matrix benchmark of `cushion diagnose` on FOREIGN campaigns (issue 15, part 5); not a ctest.
+#
+#   tools/bench_diagnose.sh [N] [OUT]        N campaigns (default 60), results in OUT (default results/bench_diagnose, git-ignored)
+#   env: SEED (2025), PAIRS and CONTROLS (default round(N/6) each), JOBS (campaigns at a time, 2),
+#        THREADS (diagnose --threads per campaign, 1), DYNAMIC_NOISE (amplitude|reading, amplitude)
+#
+# The campaigns come from build/tests/foreign_campaigns (tests/foreign: a 1D test machine with its own
+# foam and effect forms, independent of cushion's material/ and calibration/). Each is run through the
+# BLIND user path of cushion: `cushion fit CAMP/campaign.json -o CAMP/fit`, then
+# `cushion diagnose CAMP/fit/material.json CAMP/campaign.json -o CAMP/diag --joint-base`; truth.json is
+# read only here, to score. Verdict from CAMP/diag/report.json (calibration/diagnose_output.cpp): "winner"
+# names the effect(s) ("kind" or "kind + kind"); without a winner the verdict is "none" when it says
+# "No effect is missing", else "base" (recalibrate the base: "No effect can be told from a base
+# calibration ..." or "The model fails beyond noise ...").
+# Writes OUT/confusion.csv, OUT/campaigns.csv (one line per campaign) and OUT/summary.txt (printed too).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+N=${1:-60}
+OUT=${2:-results/bench_diagnose}
+SEED=${SEED:-2025}
+PAIRS=${PAIRS:-$(( (N + 3) / 6 ))}
+CONTROLS=${CONTROLS:-$(( (N + 3) / 6 ))}
+JOBS=${JOBS:-2}
+THREADS=${THREADS:-1}
+DYNAMIC_NOISE=${DYNAMIC_NOISE:-amplitude}
+(( JOBS >= 1 && JOBS <= 2 )) || { echo "JOBS must be 1 or 2 (2 cores)" >&2; exit 2; }
+
+nice -n 5 cmake --build build --target cushion foreign_campaigns -j2 >/dev/null
+CUSHION=$PWD/build/tools/cushion
+GENERATOR=$PWD/build/tests/foreign_campaigns
+mkdir -p "$OUT"
+OUT=$(cd "$OUT" && pwd)
+rm -rf "$OUT/campaigns"
+echo "bench_diagnose: generating $N campaigns (seed $SEED, $PAIRS pairs, $CONTROLS controls) in $OUT/campaigns"
+"$GENERATOR" --out "$OUT/campaigns" --count "$N" --seed "$SEED" --pairs "$PAIRS" --controls "$CONTROLS" \
+  --dynamic-noise "$DYNAMIC_NOISE" > "$OUT/generator.log"
+
+# One campaign: fit, then diagnose; CAMP/bench_status.txt holds "status fit_s diagnose_s".
+run_one() {
+  local camp=$1 cushion=$2 threads=$3 t0 t1 t2 status=ok
+  t0=$(date +%s.%N)
+  if ! nice -n 5 "$cushion" fit "$camp/campaign.json" -o "$camp/fit" > "$camp/fit.log" 2>&1 || [[ ! -f $camp/fit/material.json ]]; then
+    status=fit_failed
+  fi
+  t1=$(date +%s.%N)
+  if [[ $status == ok ]] && ! nice -n 5 "$cushion" diagnose "$camp/fit/material.json" "$camp/campaign.json" -o "$camp/diag" \
+       --joint-base --threads "$threads" > "$camp/diag.log" 2>&1; then
+    status=diagnose_failed
+  fi
+  t2=$(date +%s.%N)
+  echo "$status $(echo "$t1 - $t0" | bc) $(echo "$t2 - $t1" | bc)" > "$camp/bench_status.txt"
+  echo "bench_diagnose: $(basename "$camp") $(cat "$camp/bench_status.txt")"
+}
+export -f run_one
+start=$(date +%s)
+ls -d "$OUT"/campaigns/c[0-9]* | xargs -P "$JOBS" -I{} bash -c 'run_one "$@"' _ {} "$CUSHION" "$THREADS"
+echo "bench_diagnose: wall time $(( $(date +%s) - start )) s for $N campaigns, $JOBS at a time"
+
+python3 - "$OUT" "$SEED" "$JOBS" "$THREADS" <<'PY'
+import csv, json, os, statistics, sys
+out, seed, jobs, threads = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4]
+families = ["pneumatic", "friction", "mullins", "stiffness_damping", "strain_dependent_prony"]
+columns = families + ["none", "base", "fit-failed", "diagnose-failed"]
+
+def verdict_of(camp):
+    status, fit_s, diag_s = open(os.path.join(camp, "bench_status.txt")).read().split()
+    seconds = float(fit_s) + float(diag_s)
+    if status == "fit_failed":
+        return ["fit-failed"], None, None, seconds
+    report = os.path.join(camp, "diag", "report.json")
+    if status != "ok" or not os.path.exists(report):
+        return ["diagnose-failed"], None, None, seconds
+    r = json.load(open(report))
+    worst = lambda c: max((t["error_over_noise"] for t in c["tests"] if t.get("error_over_noise") is not None), default=None)
+    baseline = worst(r["baseline"])
+    if r.get("winner"):
+        named = [k.strip() for k in r["winner"].split("+")]
+        after = worst(r["candidates"][0]["compare"]) if r["candidates"] and "compare" in r["candidates"][0] else None
+        return named, baseline, after, seconds
+    if r.get("at_noise_level") or r["verdict"].startswith("No effect is missing"):
+        return ["none"], baseline, None, seconds
+    if r["verdict"].startswith("Cannot diagnose"):
+        return ["diagnose-failed"], baseline, None, seconds
+    return ["base"], baseline, None, seconds
+
+rows = []
+for line in csv.DictReader(open(os.path.join(out, "campaigns", "index.csv"))):
+    camp = os.path.join(out, "campaigns", line["campaign"])
+    truth = json.load(open(os.path.join(camp, "truth.json")))
+    true = truth["families"]
+    label = "control" if not true else "+".join(true)
+    named, baseline, after, seconds = verdict_of(camp)
+    if not true:
+        right = named == ["none"]
+    elif len(true) == 1:
+        right = named[0] == true[0]                      # the true family ranked first
+    else:
+        right = sorted(named) == sorted(true)            # both families of a pair
+    rows.append(dict(campaign=line["campaign"], truth=label, forms=line["forms"], base=truth["base"]["family"],
+                     verdict="+".join(named), right=right, baseline_error_over_noise=baseline,
+                     after_error_over_noise=after, seconds=seconds))
+
+def kind(label):
+    return "control" if label == "control" else ("pair" if "+" in label else "single")
+
+labels = [f for f in families if any(r["truth"] == f for r in rows)]
+labels += sorted({r["truth"] for r in rows if kind(r["truth"]) == "pair"})
+labels += ["control"] if any(r["truth"] == "control" for r in rows) else []
+matrix = {l: {c: 0 for c in columns} for l in labels}
+count = {l: 0 for l in labels}
+for r in rows:
+    count[r["truth"]] += 1
+    for v in r["verdict"].split("+"):
+        matrix[r["truth"]][v] += 1
+
+with open(os.path.join(out, "confusion.csv"), "w", newline="") as f:
+    w = csv.writer(f)
+    w.writerow(["truth", "campaigns"] + columns)
+    for l in labels:
+        w.writerow([l, count[l]] + [matrix[l][c] for c in columns])
+with open(os.path.join(out, "campaigns.csv"), "w", newline="") as f:
+    w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+    w.writeheader()
+    w.writerows(rows)
+
+fmt = lambda x: "-" if x is None else f"{x:.3g}"
+lines = []
+p = lines.append
+p(f"cushion diagnose benchmark on foreign campaigns: N = {len(rows)} (seed {seed}; fit + diagnose --joint-base, "
+  f"{jobs} campaigns at a time, --threads {threads})")
+p("")
+p("Confusion matrix (rows: truth; columns: verdict; a pair verdict counts in both of its families' columns):")
+short = {"pneumatic": "pneum", "friction": "frict", "mullins": "mull", "stiffness_damping": "stiffd",
+         "strain_dependent_prony": "sdprony", "none": "none", "base": "base", "fit-failed": "fitfail",
+         "diagnose-failed": "diagfail"}
+width = max(len(l) for l in labels) + 2
+p("truth".ljust(width) + "n".rjust(4) + "".join(short[c].rjust(9) for c in columns))
+for l in labels:
+    p(l.ljust(width) + str(count[l]).rjust(4) + "".join(str(matrix[l][c]).rjust(9) for c in columns))
+p("")
+for k, what in (("single", "true family ranked first"), ("pair", "both families named"), ("control", "'no effect missing'")):
+    sel = [r for r in rows if kind(r["truth"]) == k]
+    if sel:
+        p(f"{k:8s}: {sum(r['right'] for r in sel)}/{len(sel)} right ({what})")
+effect_rows = [r for r in rows if kind(r["truth"]) != "control"]
+p(f"effects : {sum(r['right'] for r in effect_rows)}/{len(effect_rows)} right (singles and pairs)")
+controls = [r for r in rows if r["truth"] == "control"]
+if controls:
+    fp = sum(1 for r in controls if r["verdict"] not in ("none", "base", "fit-failed", "diagnose-failed"))
+    p(f"control false-positive rate (an effect named): {fp}/{len(controls)} = {fp / len(controls):.2f}")
+after = [r for r in rows if r["after_error_over_noise"] is not None]
+if after:
+    worst = max(after, key=lambda r: r["after_error_over_noise"])
+    p(f"worst error/noise after adding the named effect: {worst['after_error_over_noise']:.3g} ({worst['campaign']}, "
+      f"truth {worst['truth']}, named {worst['verdict']}); median over {len(after)} campaigns with a verdict effect "
+      f"{statistics.median(r['after_error_over_noise'] for r in after):.3g}")
+base = [r["baseline_error_over_noise"] for r in rows if r["baseline_error_over_noise"] is not None]
+if base:
+    p(f"worst error/noise of the fitted baseline: median {statistics.median(base):.3g}, max {max(base):.3g}")
+secs = [r["seconds"] for r in rows]
+p(f"time per campaign (fit + diagnose): mean {statistics.mean(secs):.1f} s, max {max(secs):.1f} s")
+p("")
+p("Per campaign:")
+p(f"{'campaign':9s} {'truth':40s} {'forms':34s} {'base':16s} {'verdict':36s} ok   err/noise before -> after   s")
+for r in rows:
+    p(f"{r['campaign']:9s} {r['truth']:40s} {r['forms']:34s} {r['base']:16s} {r['verdict']:36s} "
+      f"{'yes' if r['right'] else 'no ':3s}  {fmt(r['baseline_error_over_noise']):>8s} -> {fmt(r['after_error_over_noise']):8s} "
+      f"{r['seconds']:6.1f}")
+text = "\n".join(lines) + "\n"
+open(os.path.join(out, "summary.txt"), "w").write(text)
+print(text, end="")
+PY
