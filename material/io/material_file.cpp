@@ -19,7 +19,8 @@ constexpr std::size_t max_prony_terms = 20;
 bool non_negative(double x) { return x >= 0.0; }
 bool poisson_range(double x) { return x >= 0.0 && x < 0.5; }
 // Physical bounds (material_file.hpp): values past them would overflow the model (1e308 kPa gave -inf).
-bool modulus_range(double x) { return std::abs(x) <= 1e6; }                    // |modulus| <= 1e6 kPa
+// Hyperfoam terms: fitted terms of opposite sign can be large (a `cushion fit` gave mu_kPa 6.7e6).
+bool term_modulus_range(double x) { return std::abs(x) <= 1e9; }               // |mu_kPa| <= 1e9
 bool positive_modulus(double x) { return x > 0.0 && x <= 1e6; }
 bool non_negative_modulus(double x) { return x >= 0.0 && x <= 1e6; }
 bool lambda_range(double x) { return std::abs(x) <= 1e9; }                     // |lambda| <= 1e9 kPa
@@ -37,7 +38,7 @@ std::vector<HyperfoamTerm> read_hyperfoam(const io::JsonNode& node) {
     const io::JsonNode term = terms[i];
     term.expect_object({"mu_kPa", "alpha", "nu"});
     HyperfoamTerm t;
-    t.mu = term.at("mu_kPa").number_where(modulus_range, "in [-1e6, 1e6] kPa") * kPa;
+    t.mu = term.at("mu_kPa").number_where(term_modulus_range, "in [-1e9, 1e9] kPa") * kPa;
     t.alpha = term.at("alpha").number_where(alpha_range, "non-zero and in [-100, 100]");
     t.nu = term.at("nu").number_where(poisson_range, "in [0, 0.5)");
     mu_sum += t.mu;
