@@ -167,8 +167,9 @@ void validate_effects(const std::vector<EffectSpec>& effects, const std::string&
     std::vector<std::string> names;
     for (const EffectParameterInfo& p : info->parameters) names.push_back(p.name);
     for (const auto& [name, value] : spec.parameters) {
+      const std::string& key = name;  // a structured binding cannot be captured by clang 14 (fuzz build)
       const auto it = std::find_if(info->parameters.begin(), info->parameters.end(),
-                                   [&](const EffectParameterInfo& p) { return p.name == name; });
+                                   [&key](const EffectParameterInfo& p) { return p.name == key; });
       if (it == info->parameters.end())
         fail(source, i, name, "unknown parameter of '" + spec.kind + "' (known: " + known_list(names) + ")");
       const bool above = it->min_exclusive ? value > it->min : value >= it->min;

@@ -77,6 +77,10 @@ void load(const std::string& text, const std::string& name, std::vector<Line>& l
       if (input.empty()) fail(line, "INCLUDE", "missing INPUT=file");
       const std::filesystem::path path =
           std::filesystem::path(name).parent_path() / std::filesystem::path(input);
+      // Only regular files: /dev/zero or a FIFO would be read for ever (found while writing the fuzz harness).
+      std::error_code ec;
+      if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+        fail(line, "INCLUDE", "'" + path.string() + "' is not a regular file");
       std::ifstream file(path);
       if (!file) fail(line, "INCLUDE", "cannot open '" + path.string() + "'");
       std::stringstream content;

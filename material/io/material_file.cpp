@@ -1,5 +1,6 @@
 #include "material/io/material_file.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "io/input_error.hpp"
@@ -15,10 +16,17 @@ constexpr double kPa = 1e-3;             // kPa -> MPa
 constexpr double kg_per_m3 = 1e-12;      // kg/m^3 -> t/mm^3
 constexpr std::size_t max_prony_terms = 20;
 
-bool positive(double x) { return x > 0.0; }
 bool non_negative(double x) { return x >= 0.0; }
-bool non_zero(double x) { return x != 0.0; }
 bool poisson_range(double x) { return x >= 0.0 && x < 0.5; }
+// Physical bounds (material_file.hpp): values past them would overflow the model (1e308 kPa gave -inf).
+// Hyperfoam terms: fitted terms of opposite sign can be large (a `cushion fit` gave mu_kPa 6.7e6).
+bool term_modulus_range(double x) { return std::abs(x) <= 1e9; }               // |mu_kPa| <= 1e9
+bool positive_modulus(double x) { return x > 0.0 && x <= 1e6; }
+bool non_negative_modulus(double x) { return x >= 0.0 && x <= 1e6; }
+bool lambda_range(double x) { return std::abs(x) <= 1e9; }                     // |lambda| <= 1e9 kPa
+bool alpha_range(double x) { return x != 0.0 && std::abs(x) <= 100.0; }
+bool time_range(double x) { return x > 0.0 && x <= 1e9; }                      // 0 < tau_s <= 1e9 s
+bool density_range(double x) { return x > 0.0 && x <= 1e5; }                  // 0 < density <= 1e5 kg/m^3
 
 std::vector<HyperfoamTerm> read_hyperfoam(const io::JsonNode& node) {
   node.expect_object({"terms"});
@@ -30,8 +38,8 @@ std::vector<HyperfoamTerm> read_hyperfoam(const io::JsonNode& node) {
     const io::JsonNode term = terms[i];
     term.expect_object({"mu_kPa", "alpha", "nu"});
     HyperfoamTerm t;
-    t.mu = term.at("mu_kPa").number() * kPa;
-    t.alpha = term.at("alpha").number_where(non_zero, "non-zero");
+    t.mu = term.at("mu_kPa").number_where(term_modulus_range, "in [-1e9, 1e9] kPa") * kPa;
+    t.alpha = term.at("alpha").number_where(alpha_range, "non-zero and in [-100, 100]");
     t.nu = term.at("nu").number_where(poisson_range, "in [0, 0.5)");
     mu_sum += t.mu;
     result.push_back(t);
@@ -42,9 +50,9 @@ std::vector<HyperfoamTerm> read_hyperfoam(const io::JsonNode& node) {
 
 void read_neo_hookean(const io::JsonNode& node, MaterialSpec& spec) {
   node.expect_object({"mu_kPa", "lambda_kPa"});
-  spec.neo_mu = node.at("mu_kPa").number_where(positive, "> 0") * kPa;
+  spec.neo_mu = node.at("mu_kPa").number_where(positive_modulus, "> 0 and <= 1e6 kPa") * kPa;
   const io::JsonNode lambda = node.at("lambda_kPa");
-  spec.neo_lambda = lambda.number() * kPa;
+  spec.neo_lambda = lambda.number_where(lambda_range, "in [-1e9, 1e9] kPa") * kPa;
   if (!(spec.neo_lambda > -2.0 * spec.neo_mu / 3.0)) lambda.fail("must be > -2 mu_kPa / 3 (positive bulk modulus)");
 }
 
@@ -57,7 +65,7 @@ std::vector<PronyTerm> read_relative_prony(const io::JsonNode& prony) {
     term.expect_object({"g", "tau_s"});
     PronyTerm t;
     t.g = term.at("g").number_where(non_negative, ">= 0");
-    t.tau = term.at("tau_s").number_where(positive, "> 0");
+    t.tau = term.at("tau_s").number_where(time_range, "> 0 and <= 1e9 s");
     g_sum += t.g;
     terms.push_back(t);
   }
@@ -67,15 +75,15 @@ std::vector<PronyTerm> read_relative_prony(const io::JsonNode& prony) {
 
 std::vector<PronyTerm> read_absolute_prony(const io::JsonNode& absolute) {
   absolute.expect_object({"E_inf_kPa", "terms"});
-  const double E_inf = absolute.at("E_inf_kPa").number_where(positive, "> 0");
+  const double E_inf = absolute.at("E_inf_kPa").number_where(positive_modulus, "> 0 and <= 1e6 kPa");
   const io::JsonNode terms = absolute.at("terms");
   const std::size_t n = terms.expect_array(1, max_prony_terms);
   std::vector<double> E, tau;
   for (std::size_t i = 0; i < n; ++i) {
     const io::JsonNode term = terms[i];
     term.expect_object({"E_kPa", "tau_s"});
-    E.push_back(term.at("E_kPa").number_where(non_negative, ">= 0"));
-    tau.push_back(term.at("tau_s").number_where(positive, "> 0"));
+    E.push_back(term.at("E_kPa").number_where(non_negative_modulus, ">= 0 and <= 1e6 kPa"));
+    tau.push_back(term.at("tau_s").number_where(time_range, "> 0 and <= 1e9 s"));
   }
   return prony_from_absolute(E_inf, E, tau);
 }
@@ -145,7 +153,8 @@ MaterialDefinition parse_material_json(const std::string& text, const std::strin
     if (spec.name.empty()) name->fail("must not be empty");
   }
   if (auto description = root.find("description")) spec.description = description->string();
-  if (auto density = root.find("density_kg_m3")) spec.density = density->number_where(positive, "> 0") * kg_per_m3;
+  if (auto density = root.find("density_kg_m3"))
+    spec.density = density->number_where(density_range, "> 0 and <= 1e5 kg/m^3") * kg_per_m3;
 
   const bool hyperfoam = root.has("hyperfoam"), neo_hookean = root.has("neo_hookean");
   if (hyperfoam == neo_hookean) root.fail("give exactly one elastic base: \"hyperfoam\" or \"neo_hookean\"");

@@ -13,7 +13,11 @@
 /// }
 /// Every key shown is required inside its object. Ranges: alpha != 0, 0 <= nu < 0.5, sum mu > 0;
 /// neo-Hookean mu > 0, lambda > -2 mu / 3; 1..20 Prony terms, g >= 0, sum g < 1, tau_s > 0, E_kPa >= 0,
-/// E_inf_kPa > 0. Unknown keys, missing keys, wrong types, out-of-range or non-finite values raise
+/// E_inf_kPa > 0. Physical bounds, so that no value overflows the model (issue 16: mu_kPa 1e308
+/// gave -inf stresses): hyperfoam |mu_kPa| <= 1e9 (fitted terms of opposite sign can be large),
+/// neo-Hookean mu_kPa <= 1e6, 0 < |alpha| <= 100, |lambda_kPa| <= 1e9, E_kPa and E_inf_kPa <= 1e6,
+/// tau_s <= 1e9 s, density_kg_m3 <= 1e5.
+/// Unknown keys, missing keys, wrong types, out-of-range or non-finite values raise
 /// InputError naming the file and the key path (e.g. "foam.json: hyperfoam.terms[1].alpha: must be non-zero").
 /// The writer always writes the relative "prony" form.
 #include <filesystem>

@@ -9,8 +9,12 @@ namespace cushion::material {
 
 namespace {
 
-bool positive(double x) { return x > 0.0; }
-bool non_negative(double x) { return x >= 0.0; }
+// Physical bounds (protocol_file.hpp): a value past them would overflow the driver later (1e308 was accepted).
+bool strain_range(double x) { return std::abs(x) <= 10.0; }              // |control| <= 10
+bool amplitude_range(double x) { return x >= 0.0 && x <= 10.0; }
+bool time_range(double x) { return x > 0.0 && x <= 1e9; }                // 0 < duration_s <= 1e9 s
+bool frequency_range(double x) { return x > 0.0 && x <= 1e6; }          // 0 < frequency_Hz <= 1e6
+bool cycles_range(double x) { return x > 0.0 && x <= 1e8; }
 constexpr long long max_steps = 100000000;
 
 Segment read_segment(const io::JsonNode& node) {
@@ -21,21 +25,21 @@ Segment read_segment(const io::JsonNode& node) {
   if (auto ramp = node.find("ramp")) {
     ramp->expect_object({"target", "duration_s", "steps"});
     s.kind = Segment::Kind::ramp;
-    s.target = ramp->at("target").number();
-    s.duration = ramp->at("duration_s").number_where(positive, "> 0");
+    s.target = ramp->at("target").number_where(strain_range, "in [-10, 10]");
+    s.duration = ramp->at("duration_s").number_where(time_range, "> 0 and <= 1e9 s");
     if (auto steps = ramp->find("steps")) s.steps = static_cast<int>(steps->integer(1, max_steps));
   } else if (auto hold = node.find("hold")) {
     hold->expect_object({"duration_s", "steps"});
     s.kind = Segment::Kind::hold;
-    s.duration = hold->at("duration_s").number_where(positive, "> 0");
+    s.duration = hold->at("duration_s").number_where(time_range, "> 0 and <= 1e9 s");
     if (auto steps = hold->find("steps")) s.steps = static_cast<int>(steps->integer(1, max_steps));
   } else {
     const io::JsonNode sine = node.at("sine");
     sine.expect_object({"amplitude", "frequency_Hz", "cycles", "steps_per_cycle"});
     s.kind = Segment::Kind::sine;
-    s.amplitude = sine.at("amplitude").number_where(non_negative, ">= 0");
-    s.frequency = sine.at("frequency_Hz").number_where(positive, "> 0");
-    s.cycles = sine.at("cycles").number_where(positive, "> 0");
+    s.amplitude = sine.at("amplitude").number_where(amplitude_range, "in [0, 10]");
+    s.frequency = sine.at("frequency_Hz").number_where(frequency_range, "> 0 and <= 1e6 Hz");
+    s.cycles = sine.at("cycles").number_where(cycles_range, "> 0 and <= 1e8");
     if (auto per_cycle = sine.find("steps_per_cycle")) {
       const double steps = static_cast<double>(per_cycle->integer(1, max_steps)) * s.cycles;
       if (steps > static_cast<double>(max_steps)) per_cycle->fail("too many increments in the segment");

@@ -10,6 +10,9 @@
 ///   ]
 /// }
 /// target and amplitude are the control (nominal strain l - 1, tension positive; gamma in simple shear).
+/// Physical bounds (a value past them would overflow the driver; issue 16: a 1e308 target was
+/// accepted): |target| <= 10, 0 <= amplitude <= 10, 0 < duration_s <= 1e9 s, 0 < frequency_Hz <= 1e6,
+/// 0 < cycles <= 1e8; steps and steps_per_cycle 1..1e8.
 /// Problems raise InputError "<file>: segments[2].sine.frequency_Hz: must be > 0, found 0".
 #include <filesystem>
 #include <string>

@@ -35,7 +35,9 @@ void check_unit(const nlohmann::json& value, const Context& ctx, const std::stri
   for (const auto& a : allowed) {
     const auto [a_stem, a_unit] = split_unit(a);
     if (a_unit.empty() || stem != a_stem) continue;
-    const auto meaning = std::find_if(kUnits.begin(), kUnits.end(), [&](const auto& u) { return u.first == a_unit; });
+    const std::string& wanted = a_unit;  // a structured binding cannot be captured by clang 14 (fuzz build)
+    const auto meaning =
+        std::find_if(kUnits.begin(), kUnits.end(), [&wanted](const auto& u) { return u.first == wanted; });
     io::JsonNode(value[key], ctx.source, join(path, key))
         .fail("wrong unit '" + unit + "': this quantity is given as '" + a + "'" +
               (meaning != kUnits.end() ? " (" + meaning->second + ")" : std::string{}));

@@ -9,7 +9,8 @@
 ///   "mesh": exactly one of
 ///     {"generate": {"type": "hex8" | "tet4" | "tet10",          structured block (C3D8 / C3D4 / C3D10)
 ///                   "box_mm": [x0, x1, y0, y1, z0, z1],        [mm], x0 < x1, y0 < y1, z0 < z1
-///                   "elements": [nx, ny, nz],                   integers >= 1 (tets: 6 per hex cell)
+///                   "elements": [nx, ny, nz],                   integers >= 1 (tets: 6 per hex cell),
+///                                                              nx ny nz <= 1e7 cells
 ///                   "grading"?: {"x"|"y"|"z": {"ratio": r, "focus_mm"?: f}}}}
 ///                        ratio = h_last/h_first (geometric) or h_coarsest/h_finest (with focus_mm)
 ///      {"inp": "mesh.inp"}                                      ABAQUS input file (nodes, elements, *NSET)

@@ -1,11 +1,14 @@
 // The "mesh" part of the case grammar (case_spec.hpp): structured block, ABAQUS .inp or TetGen STL.
 #include <cmath>
 
+#include "io/text_support.hpp"
 #include "solver/case/case_parts.hpp"
 
 namespace cushion::solver::case_parse {
 
 namespace {
+
+constexpr double kMaxGeneratedCells = 1e7;  ///< case_spec.hpp: generate.elements
 
 mesh::ElementType element_type(const std::string& name) {
   if (name == "hex8") return mesh::ElementType::hex8;
@@ -54,6 +57,10 @@ GenerateMeshSpec parse_generate(const Obj& o) {
     if (x != std::floor(x) || x < 1 || x > 1e6) n[axis].fail("must be an integer >= 1");
     g.elements[axis] = static_cast<int>(x);
   }
+  // Bounded so that a case file cannot ask for a mesh that exhausts memory (1e6^3 cells was accepted).
+  const double cells = double(g.elements[0]) * g.elements[1] * g.elements[2];
+  if (cells > kMaxGeneratedCells)
+    o.fail("elements", "nx * ny * nz must be <= 1e7 cells, found " + io::format_double(cells));
   if (o.has("grading")) parse_grading(o, g);
   return g;
 }

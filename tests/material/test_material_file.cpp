@@ -201,3 +201,47 @@ TEST(ProtocolFile, ReadsSegmentsAndRejectsBadOnes) {
   EXPECT_NE(error(R"({"segments": [{"ramp": {"target": 0, "duration_s": 1}, "hold": {"duration_s": 1}}]})").find("exactly one"),
             std::string::npos);
 }
+
+// Issue 16 (known before fuzzing): values past a physical range overflowed later instead of being rejected with the key
+// named (mu_kPa 1e308 ran `cushion point` to exit 0 with -inf stresses).
+TEST(MaterialFile, ValuesPastPhysicalBoundsAreRejected) {
+  expect_error(good_with(R"("mu_kPa": 10)", R"("mu_kPa": 1e308)"),
+               {"foam.json: hyperfoam.terms[0].mu_kPa: must be in [-1e9, 1e9] kPa, found 1e+308"});
+  expect_error(good_with(R"("alpha": 10)", R"("alpha": 1e300)"), {"hyperfoam.terms[0].alpha", "[-100, 100]"});
+  expect_error(good_with(R"("tau_s": 10)", R"("tau_s": 1e300)"), {"viscoelastic.prony[1].tau_s", "<= 1e9 s"});
+  expect_error(good_with(R"("density_kg_m3": 65)", R"("density_kg_m3": 1e300)"), {"density_kg_m3", "<= 1e5"});
+  expect_error(R"({"neo_hookean": {"mu_kPa": 1e308, "lambda_kPa": 1}})", {"neo_hookean.mu_kPa", "<= 1e6 kPa"});
+  expect_error(R"({"neo_hookean": {"mu_kPa": 1, "lambda_kPa": 1e308}})", {"neo_hookean.lambda_kPa", "[-1e9, 1e9]"});
+  expect_error(good_with(R"("prony": [{"g": 0.3, "tau_s": 0.1}, {"g": 0.2, "tau_s": 10}])",
+                         R"("absolute": {"E_inf_kPa": 1e308, "terms": [{"E_kPa": 1, "tau_s": 1}]})"),
+               {"viscoelastic.absolute.E_inf_kPa", "<= 1e6 kPa"});
+  expect_error(good_with(R"("prony": [{"g": 0.3, "tau_s": 0.1}, {"g": 0.2, "tau_s": 10}])",
+                         R"("absolute": {"E_inf_kPa": 1, "terms": [{"E_kPa": 1e308, "tau_s": 1}]})"),
+               {"viscoelastic.absolute.terms[0].E_kPa", "<= 1e6 kPa"});
+  // The bounds are generous: large fitted terms (`cushion fit` wrote 6.7e6 kPa) and a day-long relaxation time.
+  EXPECT_EQ(error_of(good_with(R"("mu_kPa": 10)", R"("mu_kPa": 6.7e6)")), "");
+  EXPECT_EQ(error_of(good_with(R"("tau_s": 10)", R"("tau_s": 86400)")), "");
+}
+
+// Issue 16 (known before fuzzing): a 1e308 control in a protocol was accepted and failed later in the driver.
+TEST(ProtocolFile, ValuesPastPhysicalBoundsAreRejected) {
+  auto error = [](const std::string& text) {
+    try {
+      cm::parse_protocol_json(text, "p.json");
+    } catch (const cushion::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(error(R"({"segments": [{"ramp": {"target": 1e308, "duration_s": 1}}]})"),
+            "p.json: segments[0].ramp.target: must be in [-10, 10], found 1e+308");
+  EXPECT_EQ(error(R"({"segments": [{"hold": {"duration_s": 1e300}}]})"),
+            "p.json: segments[0].hold.duration_s: must be > 0 and <= 1e9 s, found 1e+300");
+  EXPECT_NE(error(R"({"segments": [{"sine": {"amplitude": 1e308, "frequency_Hz": 1, "cycles": 1}}]})")
+                .find("p.json: segments[0].sine.amplitude: must be in [0, 10]"), std::string::npos);
+  EXPECT_NE(error(R"({"segments": [{"sine": {"amplitude": 0.1, "frequency_Hz": 1e308, "cycles": 1}}]})")
+                .find("p.json: segments[0].sine.frequency_Hz: must be > 0 and <= 1e6 Hz"), std::string::npos);
+  EXPECT_NE(error(R"({"segments": [{"sine": {"amplitude": 0.1, "frequency_Hz": 1, "cycles": 1e300}}]})")
+                .find("p.json: segments[0].sine.cycles"), std::string::npos);
+  EXPECT_EQ(error(R"({"segments": [{"ramp": {"target": -0.9, "duration_s": 1e9}}]})"), "");
+}

@@ -235,6 +235,13 @@ TEST(InpReader, FuzzFindingsAreInputErrors) {
   EXPECT_EQ(error_of(replace(kDeck, "*HEADING\n", "*,\n")), "model.inp:1: empty keyword");
 }
 
+// Found while writing the fuzz harness (issue 16): *INCLUDE of a device (/dev/zero) was read for ever.
+TEST(InpReader, IncludeOfANonRegularFileIsAnInputError) {
+  EXPECT_EQ(error_of("*NODE\n1,0,0,0\n*INCLUDE, INPUT=/dev/zero\n"),
+            "model.inp:3: *INCLUDE: '/dev/zero' is not a regular file");
+  EXPECT_EQ(error_of("*INCLUDE, INPUT=/\n"), "model.inp:1: *INCLUDE: '/' is not a regular file");
+}
+
 TEST(InpReader, GenerateAtTheEndsOfTheIntRange) {
   const std::string deck = R"(*NODE
 -2147483647, 0, 0, 0

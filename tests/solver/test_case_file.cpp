@@ -208,6 +208,15 @@ TEST(CaseFile, IntegerKeysPastTheirRangeAreRejected) {
   expect_error(error_of(j, "increments"), "steps[1].increment.max_increments", "must be an integer in [1, 10000000]");
 }
 
+// Issue 16 (review for the fuzz harness): "elements" allowed 1e6 per axis, i.e. a 1e18-cell block that exhausts memory.
+TEST(CaseFile, GeneratedMeshSizeIsBounded) {
+  auto j = valid_case();
+  j["mesh"]["generate"]["elements"] = {1000000, 1000000, 1000000};
+  expect_error(error_of(j, "cells"), "mesh.generate.elements", "nx * ny * nz must be <= 1e7 cells, found 1e+18");
+  j["mesh"]["generate"]["elements"] = {1000, 100, 100};  // exactly 1e7: accepted
+  EXPECT_EQ(error_of(j, "cells_ok"), "");
+}
+
 TEST(CaseFile, WrongUnitIsNamed) {
   auto j = valid_case();
   j["steps"][0].erase("time_period_s");
