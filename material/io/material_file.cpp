@@ -26,7 +26,7 @@ bool non_negative_modulus(double x) { return x >= 0.0 && x <= 1e6; }
 bool lambda_range(double x) { return std::abs(x) <= 1e9; }                     // |lambda| <= 1e9 kPa
 bool alpha_range(double x) { return x != 0.0 && std::abs(x) <= 100.0; }
 bool time_range(double x) { return x > 0.0 && x <= 1e9; }                      // 0 < tau_s <= 1e9 s
-bool density_range(double x) { return x > 0.0 && x <= 1e5; }                  // 0 < density <= 1e5 kg/m^3
+bool density_range(double x) { return x > 0.0 && x <= 1e7; }                  // 0 < density <= 1e7 kg/m^3 (mass scaling allowed)
 
 std::vector<HyperfoamTerm> read_hyperfoam(const io::JsonNode& node) {
   node.expect_object({"terms"});
@@ -154,7 +154,7 @@ MaterialDefinition parse_material_json(const std::string& text, const std::strin
   }
   if (auto description = root.find("description")) spec.description = description->string();
   if (auto density = root.find("density_kg_m3"))
-    spec.density = density->number_where(density_range, "> 0 and <= 1e5 kg/m^3") * kg_per_m3;
+    spec.density = density->number_where(density_range, "> 0 and <= 1e7 kg/m^3") * kg_per_m3;
 
   const bool hyperfoam = root.has("hyperfoam"), neo_hookean = root.has("neo_hookean");
   if (hyperfoam == neo_hookean) root.fail("give exactly one elastic base: \"hyperfoam\" or \"neo_hookean\"");

@@ -16,7 +16,7 @@
 /// E_inf_kPa > 0. Physical bounds, so that no value overflows the model (issue 16: mu_kPa 1e308
 /// gave -inf stresses): hyperfoam |mu_kPa| <= 1e9 (fitted terms of opposite sign can be large),
 /// neo-Hookean mu_kPa <= 1e6, 0 < |alpha| <= 100, |lambda_kPa| <= 1e9, E_kPa and E_inf_kPa <= 1e6,
-/// tau_s <= 1e9 s, density_kg_m3 <= 1e5.
+/// tau_s <= 1e9 s, density_kg_m3 <= 1e7 (mass scaling allowed).
 /// Unknown keys, missing keys, wrong types, out-of-range or non-finite values raise
 /// InputError naming the file and the key path (e.g. "foam.json: hyperfoam.terms[1].alpha: must be non-zero").
 /// The writer always writes the relative "prony" form.
