@@ -102,6 +102,21 @@ DynamicModuli prony_moduli(double E_inf, const std::vector<double>& E, const std
   return d;
 }
 
+namespace {
+
+/// Least squares A x = b with x >= 0: column scaling, then rank-revealing QR (the 100 s term at 1-20 Hz is
+/// nearly collinear with E_inf); Lawson-Hanson NNLS when a modulus comes out negative (`bounds_active` set).
+Eigen::VectorXd non_negative_solution(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, bool& bounds_active) {
+  Eigen::VectorXd scale = A.colwise().norm().transpose();
+  for (Eigen::Index j = 0; j < scale.size(); ++j) scale(j) = scale(j) > 0.0 ? scale(j) : 1.0;
+  const Eigen::VectorXd x = (A * scale.cwiseInverse().asDiagonal()).colPivHouseholderQr().solve(b).cwiseQuotient(scale);
+  if (x.minCoeff() >= 0.0) return x;
+  bounds_active = true;
+  return non_negative_least_squares(A, b);
+}
+
+}  // namespace
+
 PronyFit fit_prony(const DynamicModuli& d, const std::vector<double>& tau, std::optional<double> E_inf_fixed) {
   const std::size_t M = d.frequency.size();
   if (M < 3 || d.storage.size() != M || d.loss.size() != M)
@@ -121,31 +136,16 @@ PronyFit fit_prony(const DynamicModuli& d, const std::vector<double>& tau, std::
     // E_inf given: fit E_r >= 0 to the rest (the E_inf column times E_inf moved to the target).
     const Eigen::MatrixXd A = A_full.rightCols(A_full.cols() - 1);
     const Eigen::VectorXd target = ones - A_full.col(0) * *E_inf_fixed;
-    Eigen::VectorXd scale = A.colwise().norm().transpose();
-    for (Eigen::Index j = 0; j < scale.size(); ++j) scale(j) = scale(j) > 0.0 ? scale(j) : 1.0;
-    Eigen::VectorXd Er = (A * scale.cwiseInverse().asDiagonal()).colPivHouseholderQr().solve(target).cwiseQuotient(scale);
     PronyFit fit;
-    if (Er.minCoeff() < 0.0) {
-      fit.bounds_active = true;
-      Er = non_negative_least_squares(A, target);
-    }
+    const Eigen::VectorXd Er = non_negative_solution(A, target, fit.bounds_active);
     Eigen::VectorXd x(A_full.cols());
     x(0) = *E_inf_fixed;
     x.tail(Er.size()) = Er;
     return finish(fit, x, A_full, ones, d, tau, true);
   }
-  const Eigen::MatrixXd& A = A_full;
-  // Column scaling, then rank-revealing QR (the 100 s term at 1-20 Hz is nearly collinear with E_inf).
-  Eigen::VectorXd scale = A.colwise().norm().transpose();
-  for (Eigen::Index j = 0; j < scale.size(); ++j) scale(j) = scale(j) > 0.0 ? scale(j) : 1.0;
-  Eigen::VectorXd x = (A * scale.cwiseInverse().asDiagonal()).colPivHouseholderQr().solve(ones).cwiseQuotient(scale);
-
   PronyFit fit;
-  if (x.minCoeff() < 0.0) {
-    fit.bounds_active = true;
-    x = non_negative_least_squares(A, ones);
-  }
-  return finish(fit, x, A, ones, d, tau, false);
+  const Eigen::VectorXd x = non_negative_solution(A_full, ones, fit.bounds_active);
+  return finish(fit, x, A_full, ones, d, tau, false);
 }
 
 namespace {
