@@ -118,13 +118,23 @@ std::vector<Plot> fit_plots(const FitResult& R, const Campaign& campaign) {
   return plots;
 }
 
+io::OutputFolder fit_output_folder(const fs::path& dir, bool overwrite, const fs::path& manifest) {
+  io::OutputFolder f;
+  f.dir = dir;
+  f.overwrite = overwrite;
+  f.command = "cushion fit";
+  f.markers = {"report.md"};
+  f.inputs = {manifest};
+  f.staged_next_to_it = true;
+  return f;
+}
+
 std::vector<PlotFiles> write_fit_outputs(const FitResult& R, const Campaign& campaign, const fs::path& dir,
                                          const std::string& gnuplot, std::ostream& log) {
-  if (fs::exists(dir) && !(fs::is_directory(dir) && (fs::is_empty(dir) || fs::exists(dir / "report.json"))))
-    throw InputError(dir.string() + ": exists and is not an earlier fit output; choose another output folder");
+  io::check_output_folder(fit_output_folder(dir, true, campaign.manifest));
   const fs::path tmp = dir.string() + ".partial";
   fs::remove_all(tmp);
-  fs::create_directories(tmp);
+  io::create_folder(tmp);
   try {
     const double density = campaign.specimen.density;
     std::string calibration_tests;
@@ -163,8 +173,7 @@ std::vector<PlotFiles> write_fit_outputs(const FitResult& R, const Campaign& cam
       if (!f.drawn) log << "fit: note: " << f.message << "\n";
     io::write_file_atomically(tmp / "report.json", report_json(R, campaign).dump(1) + "\n");
     io::write_file_atomically(tmp / "report.md", report_markdown(R, campaign, files));
-    fs::remove_all(dir);
-    fs::rename(tmp, dir);
+    io::replace_folder(tmp, dir);
     for (auto& f : files) {
       f.csv = dir / f.csv.filename();
       f.script = dir / f.script.filename();

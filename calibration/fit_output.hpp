@@ -9,14 +9,20 @@
 
 #include "calibration/fit_pipeline.hpp"
 #include "calibration/plot.hpp"
+#include "io/output_folder.hpp"
 
 namespace cushion::calibration {
 
 /// The report's plots (paper Fig. 8, Fig. 7, Fig. 4, the Table 2 protocol curve, model vs test).
 std::vector<Plot> fit_plots(const FitResult& result, const Campaign& campaign);
 
-/// Writes every output; `gnuplot` is the executable (empty: scripts and CSV only). Refuses an existing
-/// `dir` that is not empty and not an earlier fit output (InputError). Returns the plot files.
+/// The output-folder policy of `cushion fit` (io/output_folder.hpp): an earlier fit output holds report.md,
+/// the campaign manifest is an input, the outputs are staged in DIR.partial.
+io::OutputFolder fit_output_folder(const std::filesystem::path& dir, bool overwrite, const std::filesystem::path& manifest);
+
+/// Writes every output; `gnuplot` is the executable (empty: scripts and CSV only). Replaces an earlier fit
+/// output in `dir`; refuses any other non-empty `dir` (InputError, fit_output_folder with overwrite).
+/// Returns the plot files.
 std::vector<PlotFiles> write_fit_outputs(const FitResult& result, const Campaign& campaign,
                                          const std::filesystem::path& dir, const std::string& gnuplot, std::ostream& log);
 

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "io/output_folder.hpp"
 #include "material/io/material_file.hpp"
 #include "material/point_driver.hpp"
 
@@ -70,6 +71,7 @@ struct DynamicProtocol {
 };
 
 struct LabTruth {
+  std::filesystem::path file;  ///< the truth file read (empty if built in code)
   std::string description;
   std::filesystem::path material_file;
   LabSpecimen specimen;
@@ -100,9 +102,14 @@ DynamicRecord run_dynamic(const material::Material& model, const LabSpecimen& sp
 /// Adds seeded Gaussian noise to a quasi-static record's force (portable Box-Muller on mt19937_64).
 void add_force_noise(QuasiStaticRecord& record, const LabNoise& noise, unsigned long long stream);
 
+/// The output-folder policy of `cushion lab` (io/output_folder.hpp): an earlier output holds campaign.json,
+/// the truth file and its material file are inputs, the outputs are staged in DIR.partial.
+io::OutputFolder lab_output_folder(const std::filesystem::path& dir, bool overwrite, const LabTruth& truth);
+
 /// Runs every protocol of the truth and writes DIR/campaign.json plus one CSV per test; prints one
 /// line per test to `log`. Outputs are written to a temporary folder and renamed at the end, so a
-/// failure leaves no partial campaign.
+/// failure leaves no partial campaign. Replaces an earlier campaign in DIR; refuses any other non-empty
+/// DIR (InputError, lab_output_folder with overwrite).
 void run_lab(const LabTruth& truth, const std::filesystem::path& out_dir, std::ostream& log);
 
 }  // namespace cushion::calibration

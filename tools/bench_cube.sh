@@ -36,7 +36,7 @@ main() {
         "$here/cases/cube_compression/case.json" > "$work/cube_$n.json"
     s="$work/summary_$n.txt"
     before=$(load)
-    /usr/bin/time -v -o "$work/time_$n.txt" "$cushion" run "$work/cube_$n.json" -o "$work/out_$n" --quiet > "$s"
+    /usr/bin/time -v -o "$work/time_$n.txt" "$cushion" run "$work/cube_$n.json" -o "$work/out_$n" --quiet --overwrite > "$s"
     after=$(load)
     field() { sed -n "$1" "$s" | head -1; }
     elements=$(field 's/.*model: [0-9]* nodes, \([0-9]*\) elements.*/\1/p')

@@ -21,9 +21,25 @@ namespace {
 struct CompareCli {
   std::vector<std::string> files;  // [material] campaign
   std::vector<std::string> runs;
-  std::string out, label, history;
+  cushion::io::OutputFolder out;
+  std::string label, history;
   int cycles = 5, steps = 40;
 };
+
+/// Before any computation: every --run folder exists, the output folder and the history folder can be written.
+void check_folders(CompareCli& opt) {
+  for (const auto& run : opt.runs) cushion::io::require_input_folder(run, "--run");
+  opt.out.inputs.assign(opt.files.begin(), opt.files.end());
+  opt.out.inputs.insert(opt.out.inputs.end(), opt.runs.begin(), opt.runs.end());
+  if (!opt.history.empty()) opt.out.inputs.emplace_back(opt.history);  // kept across runs: never emptied by --overwrite
+  cushion::io::check_output_folder(opt.out);
+  if (opt.history.empty()) return;
+  cushion::io::OutputFolder history;
+  history.dir = opt.history;
+  history.option = "--history";
+  history.append = true;
+  cushion::io::check_output_folder(history);
+}
 
 const cushion::tools::Registrar reg{"compare", [](CLI::App& app) {
   auto opt = std::make_shared<CompareCli>();
@@ -33,8 +49,8 @@ const cushion::tools::Registrar reg{"compare", [](CLI::App& app) {
                   "MATERIAL.json CAMPAIGN.json, or CAMPAIGN.json alone with --run (structure-level tests only)")
       ->required()
       ->expected(1, 2);
-  sub->add_option("-o,--output", opt->out, "output folder (report.json, summary.md, compare_<test>.png/.csv/.gp)")
-      ->required();
+  cushion::tools::add_output_folder_options(sub, opt->out, "output folder (report.json, summary.md, compare_<test>.png/.csv/.gp)");
+  opt->out.markers = {"summary.md"};
   sub->add_option("--run", opt->runs,
                   "output folder of a `cushion run` holding the model side of the structure-level tests (repeatable; "
                   "each test uses the first folder that has its file)");
@@ -48,6 +64,7 @@ const cushion::tools::Registrar reg{"compare", [](CLI::App& app) {
     const bool with_material = opt->files.size() == 2;
     if (!with_material && opt->runs.empty())
       throw CLI::ValidationError("compare", "give MATERIAL.json CAMPAIGN.json, or CAMPAIGN.json with --run RUN_DIR");
+    check_folders(*opt);
     const Campaign campaign = read_campaign(opt->files.back());
     CompareOptions o;
     o.dynamic_cycles = opt->cycles;
@@ -76,7 +93,8 @@ const cushion::tools::Registrar reg{"compare", [](CLI::App& app) {
     if (!runs.empty())
       for (auto& t : compare_structure(campaign, runs, r.warnings)) r.tests.push_back(std::move(t));
     const std::string gnuplot = cushion::tools::gnuplot_path();
-    const auto drawn = write_compare_outputs(r, label, opt->out, gnuplot);
+    cushion::io::prepare_output_folder(opt->out);
+    const auto drawn = write_compare_outputs(r, label, opt->out.dir, gnuplot);
     std::cout << "cushion compare: " << label << " vs " << campaign.manifest.string() << " (" << r.tests.size()
               << " tests, " << r.seconds << " s)\n\n"
               << compare_table(r) << "\n";
@@ -84,7 +102,7 @@ const cushion::tools::Registrar reg{"compare", [](CLI::App& app) {
     std::cout << (r.at_noise_level(o.noise_level_ratio) ? "every test is at the noise level (error <= "
                                                         : "some tests fail beyond noise (error > ")
               << o.noise_level_ratio << " x noise)\n";
-    std::cout << "written: " << (std::filesystem::path(opt->out) / "report.json").string() << ", " << drawn.size()
+    std::cout << "written: " << (opt->out.dir / "report.json").string() << ", " << drawn.size()
               << " plots" << (gnuplot.empty() ? " (gnuplot not found: .gp scripts only)" : "") << "\n";
     if (!opt->history.empty()) {
       const int run = append_history(opt->history, label, r, gnuplot);

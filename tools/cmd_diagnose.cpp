@@ -16,7 +16,8 @@
 namespace {
 
 struct DiagnoseCli {
-  std::string material, campaign, out;
+  std::string material, campaign;
+  cushion::io::OutputFolder out;
   std::vector<std::string> candidates;
   int threads = 2;
   bool joint_base = false;
@@ -28,13 +29,16 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
       "diagnose", "Name the physical effect missing from a calibrated material: refit each catalogue effect, rank by BIC");
   sub->add_option("material", opt->material, "calibrated baseline material file (JSON)")->required();
   sub->add_option("campaign", opt->campaign, "campaign manifest (JSON)")->required();
-  sub->add_option("-o,--output", opt->out, "output folder (diagnosis.md, report.json, fragment.json, plots)")->required();
+  cushion::tools::add_output_folder_options(sub, opt->out, "output folder (diagnosis.md, report.json, fragment.json, plots)");
+  opt->out.markers = {"diagnosis.md"};
   sub->add_option("--candidates", opt->candidates, "only these effect kinds (default: the whole catalogue)")->delimiter(',');
   sub->add_flag("--joint-base", opt->joint_base,
                 "fit each effect together with the base moduli (for a baseline calibrated on data that contain it)");
   sub->add_option("--threads", opt->threads, "candidates fitted in parallel (default 2)")->check(CLI::Range(1, 2));
   sub->callback([opt] {
     using namespace cushion::calibration;
+    opt->out.inputs = {opt->material, opt->campaign};
+    cushion::io::check_output_folder(opt->out);
     const auto def = cushion::material::read_material_file(opt->material);
     const Campaign campaign = read_campaign(opt->campaign);
     DiagnoseOptions o;
@@ -45,8 +49,9 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
       if (!cushion::material::find_effect(k)) throw cushion::InputError("--candidates: unknown effect kind '" + k + "'");
     Diagnosis d = diagnose(def.spec, campaign, o, std::cout);
     for (const auto& w : specimen_warnings(def.spec.density, campaign)) d.warnings.insert(d.warnings.begin(), w);
-    write_diagnosis_outputs(d, opt->out, cushion::tools::gnuplot_path());
-    std::cout << "\n" << diagnosis_markdown(d) << "\ndiagnose: " << d.seconds << " s; written to " << opt->out << "\n";
+    cushion::io::prepare_output_folder(opt->out);
+    write_diagnosis_outputs(d, opt->out.dir, cushion::tools::gnuplot_path());
+    std::cout << "\n" << diagnosis_markdown(d) << "\ndiagnose: " << d.seconds << " s; written to " << opt->out.dir.string() << "\n";
   });
 }};
 

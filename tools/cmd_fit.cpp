@@ -14,7 +14,8 @@
 namespace {
 
 struct FitCliOptions {
-  std::string campaign, out;
+  std::string campaign;
+  cushion::io::OutputFolder out;
   int terms = 3;
   std::string nu = "0";
   std::vector<double> tau;
@@ -32,7 +33,7 @@ const cushion::tools::Registrar reg{"fit", [](CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "fit", "Identify a visco-hyperfoam material from a test campaign (paper sections 2-3) and write a report");
   sub->add_option("campaign", opt->campaign, "campaign manifest (JSON) naming the test CSV files")->required();
-  sub->add_option("-o,--output", opt->out, "output folder (material files, ABAQUS cards, report, plots)")->required();
+  cushion::tools::add_output_folder_options(sub, opt->out, "output folder (material files, ABAQUS cards, report, plots)");
   sub->add_option("--terms", opt->terms, "hyperfoam terms N (1..6)")->check(CLI::Range(1, 6));
   sub->add_option("--nu", opt->nu, "Poisson ratio of the hyperfoam: a value in [0, 0.45] or 'fit'");
   sub->add_option("--tau", opt->tau, "Prony relaxation times [s] (default 0.01 0.1 1 10 100)")->delimiter(',');
@@ -80,18 +81,18 @@ const cushion::tools::Registrar reg{"fit", [](CLI::App& app) {
     o.default_material = opt->default_material == "paper" ? DefaultMaterial::paper : DefaultMaterial::refit;
     o.normalisation = opt->normalisation == "paper" ? PronyNormalisation::paper : PronyNormalisation::tangent;
 
-    std::cout << "fit: reading " << opt->campaign << "\n";
+    cushion::io::check_output_folder(fit_output_folder(opt->out.dir, opt->out.overwrite, opt->campaign));
     const Campaign campaign = read_campaign(opt->campaign);
-    std::cout << "fit: " << campaign.quasi_static.size() << " quasi-static and " << campaign.dynamic.size()
+    std::cout << "fit: " << opt->campaign << ": " << campaign.quasi_static.size() << " quasi-static and " << campaign.dynamic.size()
               << " dynamic test(s)\n";
     const FitResult result = fit_pipeline(campaign, o, std::cout);
-    const auto plots = write_fit_outputs(result, campaign, opt->out, cushion::tools::gnuplot_path(), std::cout);
+    const auto plots = write_fit_outputs(result, campaign, opt->out.dir, cushion::tools::gnuplot_path(), std::cout);
     std::cout << "fit: default material (" << (result.default_choice == DefaultMaterial::refit ? "refit" : "paper")
               << "): " << result.default_reason << "\n";
-    std::cout << "fit: outputs in " << opt->out << "/ :";
+    std::cout << "fit: outputs in " << opt->out.dir.string() << "/ :";
     for (const char* f : {"material.json", "material_paper.json", "material_refit.json", "abaqus_paper.inp",
                           "abaqus_refit.inp", "report.md", "report.json"})
-      if (std::filesystem::exists(std::filesystem::path(opt->out) / f)) std::cout << " " << f;
+      if (std::filesystem::exists(opt->out.dir / f)) std::cout << " " << f;
     std::size_t drawn = 0;
     for (const auto& p : plots) drawn += p.drawn;
     std::cout << ", " << plots.size() << " plots (" << drawn << " PNG drawn)\n";

@@ -8,7 +8,7 @@ namespace {
 
 struct LabOptions {
   std::string truth;
-  std::string out;
+  cushion::io::OutputFolder out;
 };
 
 const cushion::tools::Registrar reg{"lab", [](CLI::App& app) {
@@ -16,11 +16,13 @@ const cushion::tools::Registrar reg{"lab", [](CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "lab", "Generate a SYNTHETIC test campaign (quasi-static and dynamic tests) from a truth file");
   sub->add_option("truth", opt->truth, "truth file (JSON): material, specimen, protocols, noise")->required();
-  sub->add_option("-o,--output", opt->out, "output folder for campaign.json and the CSV files")->required();
+  cushion::tools::add_output_folder_options(sub, opt->out, "output folder for campaign.json and the CSV files");
   sub->callback([opt] {
-    const auto truth = cushion::calibration::read_lab_truth(opt->truth);
-    cushion::calibration::run_lab(truth, opt->out, std::cout);
-    std::cout << "lab: campaign written to " << opt->out << "/campaign.json\n";
+    using namespace cushion::calibration;
+    const LabTruth truth = read_lab_truth(opt->truth);
+    cushion::io::check_output_folder(lab_output_folder(opt->out.dir, opt->out.overwrite, truth));
+    run_lab(truth, opt->out.dir, std::cout);
+    std::cout << "lab: campaign written to " << (opt->out.dir / "campaign.json").string() << "\n";
   });
 }};
 

@@ -12,21 +12,29 @@ namespace cushion::tools {
 namespace {
 
 struct RunCommandOptions {
-  std::string case_file, output_dir;
+  std::string case_file;
+  io::OutputFolder out;
   int threads = -1;
   bool quiet = false;
 };
 
-void run_command(const RunCommandOptions& o) {
+void run_command(RunCommandOptions o) {
+  o.out.inputs = {o.case_file};
+  io::check_output_folder(o.out);  // before the mesh is built
   const solver::LoadedCase loaded = solver::load_case(o.case_file);
+  o.out.inputs.insert(o.out.inputs.end(), {loaded.spec.material_file, loaded.spec.mesh.inp_file, loaded.spec.mesh.stl.file});
   solver::RunOptions options;
-  options.output_dir = o.output_dir;
+  options.output_dir = o.out.dir;
   options.threads = o.threads;
   options.progress = o.quiet ? nullptr : &std::cout;
-  if (!o.quiet)
-    std::cout << "cushion run " << o.case_file << ": " << loaded.mesh.num_nodes() << " nodes, "
-              << loaded.mesh.num_elements() << " elements, " << loaded.spec.steps.size() << " steps -> "
-              << o.output_dir << std::endl;
+  // After every input check, so that bad input prints its one line and nothing else.
+  options.prepare_output = [&o, &loaded] {
+    io::prepare_output_folder(o.out);
+    if (!o.quiet)
+      std::cout << "cushion run " << o.case_file << ": " << loaded.mesh.num_nodes() << " nodes, "
+                << loaded.mesh.num_elements() << " elements, " << loaded.spec.steps.size() << " steps -> "
+                << o.out.dir.string() << std::endl;
+  };
   const solver::InterruptGuard guard;
   const solver::RunSummary summary = solver::run_analysis(loaded, options);
   // The summary is printed even with --quiet: it is the result of the run.
@@ -37,8 +45,8 @@ const Registrar reg{"run", [](CLI::App& app) {
   auto o = std::make_shared<RunCommandOptions>();
   CLI::App* sub = app.add_subcommand("run", "run the steps of a case file (frames for ParaView, history CSV, log)");
   sub->add_option("case", o->case_file, "case file (JSON, see cases/cube_compression/case.json)")->required();
-  sub->add_option("-o,--output", o->output_dir, "output folder (created; results.pvd, history.csv, solver.log)")
-      ->required();
+  add_output_folder_options(sub, o->out, "output folder (created; results.pvd, history.csv, solver.log)");
+  o->out.markers = {"solver.log", "results.pvd"};
   sub->add_option("--threads", o->threads, "threads of the element loop (default: the case's solver.threads, 0 = all)")
       ->check(CLI::Range(0, 1024));
   sub->add_flag("--quiet", o->quiet, "no progress lines (the summary is still printed)");

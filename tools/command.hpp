@@ -10,6 +10,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "io/output_folder.hpp"
+
 namespace cushion::tools {
 
 using Setup = std::function<void(CLI::App& app)>;
@@ -20,5 +22,14 @@ std::vector<std::pair<std::string, Setup>>& registry();
 struct Registrar {
   Registrar(std::string name, Setup setup) { registry().emplace_back(std::move(name), std::move(setup)); }
 };
+
+/// Adds `-o,--output DIR` (required) and `--overwrite` bound to `folder` (the policy in io/output_folder.hpp);
+/// the command fills in the rest of `folder`.
+inline void add_output_folder_options(CLI::App* sub, io::OutputFolder& folder, const std::string& description) {
+  folder.command = "cushion " + sub->get_name();
+  sub->add_option("-o,--output", folder.dir, description)->required();
+  sub->add_flag("--overwrite", folder.overwrite,
+                "replace the content of an existing non-empty output folder (only an earlier output of this command)");
+}
 
 }  // namespace cushion::tools

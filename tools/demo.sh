@@ -47,11 +47,11 @@ echo "  plots:  $plots"
 
 # 3. Calibration: the paper's method plus the consistency refit on the shipped SYNTHETIC campaign.
 echo; echo "== cushion fit: shipped synthetic campaign -> material =="
-"$cushion" fit cases/campaign_synthetic/campaign/campaign.json -o results/fit
+"$cushion" fit cases/campaign_synthetic/campaign/campaign.json -o results/fit --overwrite
 
 # 4. The FE cube test with the paper's foam (hyperfoam + Table 3 Prony), frames for ParaView.
 echo; echo "== cushion run: the paper's 80 mm cube (load, hold, unload) =="
-"$cushion" run cases/cube_compression/case.json -o results/cube --quiet
+"$cushion" run cases/cube_compression/case.json -o results/cube --quiet --overwrite
 
 # 5. Compare, diagnose, extend on a campaign with a hidden effect (cases/hidden_effects/README.md).
 echo; echo "== compare -> diagnose -> add the effect -> compare again =="

@@ -35,7 +35,7 @@ force_at() {
            END { printf "%.2f %.2f %.2f\n", f[40], f[80], f[120] }' "$1/contact_sitbar.csv"
 }
 run() {  # run NAME CASEFILE -> "F20 F40 F60 dofs increments iterations cutbacks seconds"
-  "$cushion" run "$2" -o "$work/out_$1" > "$work/$1.log" 2>&1 || { echo "run $1 failed, see $work/$1.log" >&2; exit 1; }
+  "$cushion" run "$2" -o "$work/out_$1" --overwrite > "$work/$1.log" 2>&1 || { echo "run $1 failed, see $work/$1.log" >&2; exit 1; }
   local s; s="$(grep -E '^summary:' "$work/$1.log")"
   echo "$(force_at "$work/out_$1") $(grep -oE '[0-9]+ free dofs' "$work/$1.log" | cut -d' ' -f1)" \
        "$(echo "$s" | grep -oE '[0-9]+ increments' | cut -d' ' -f1)" \

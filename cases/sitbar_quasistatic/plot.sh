@@ -14,7 +14,7 @@ here="$(cd "$(dirname "$0")" && pwd)"
 out="${1:?usage: plot.sh OUT [CUSHION_BINARY]}"
 cushion="${2:-$here/../../build/tools/cushion}"
 [ -f "$out/contact_sitbar.csv" ] || { echo "plot.sh: $out/contact_sitbar.csv not found (run the case first)" >&2; exit 1; }
-if [ ! -f "$out/cube/history.csv" ]; then "$cushion" run "$here/cube_same_rate.json" -o "$out/cube" > /dev/null; fi
+if [ ! -f "$out/cube/history.csv" ]; then "$cushion" run "$here/cube_same_rate.json" -o "$out/cube" --overwrite > /dev/null; fi
 awk -F, 'BEGIN { print "time_s,indentation_mm,compression_pct,force_N,mean_pressure_kPa" }
   /^#/ || $1 == "time_s" { next }
   { d = -$4; printf "%s,%.6g,%.6g,%.6g,%.6g\n", $1, d, 100 * d / 80, -$7, $10 }' "$out/contact_sitbar.csv" > "$out/fig11_sitbar.csv"

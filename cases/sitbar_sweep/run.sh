@@ -5,7 +5,7 @@ set -e
 cd "$(dirname "$0")"
 CUSHION=${1:-../../build/tools/cushion}
 OUT=${2:-out}
-"$CUSHION" run case.json -o "$OUT"
+"$CUSHION" run case.json -o "$OUT" --overwrite  # re-running the script replaces OUT
 # fig12.csv: FE (with / without Rayleigh) and test side by side, one row per frequency.
 awk -F, 'FNR == 1 { file++ } /^#/ || /^frequency/ { next }
          file == 1 { E1[$1] = $18; P1[$1] = $21; f[$1] = 1 } file == 2 { E2[$1] = $18; P2[$1] = $21 }

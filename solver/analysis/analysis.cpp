@@ -63,6 +63,8 @@ double peak_memory_mb() {
 RunSummary run_analysis(const LoadedCase& loaded, const RunOptions& options) {
   const CaseSpec& spec = loaded.spec;
   const LinearSolverKind kind = linear_solver_kind(spec);
+  check_contacts_before_run(loaded);
+  if (options.prepare_output) options.prepare_output();
   const int threads_wanted = options.threads >= 0 ? options.threads : spec.solver.threads;
   const unsigned threads = threads_wanted > 0 ? static_cast<unsigned>(threads_wanted)
                                               : std::max(1u, std::thread::hardware_concurrency());

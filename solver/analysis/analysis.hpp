@@ -16,6 +16,7 @@
 /// Outputs in OUTDIR: results.pvd + results_NNNN.vtu (a frame at t = 0, at the steps' frame times
 /// and at every step end), history.csv (every converged increment), solver.log (every iteration).
 #include <filesystem>
+#include <functional>
 #include <ostream>
 #include <string>
 
@@ -29,6 +30,9 @@ struct RunOptions {
   std::filesystem::path output_dir = "out";
   int threads = -1;                  ///< element-loop threads; -1: the case's solver.threads (0: all cores)
   std::ostream* progress = nullptr;  ///< one line per increment and the summary; nullptr: silent
+  /// Called after the input checks that need no solution and before the first file is written
+  /// (`cushion run`: the output-folder policy, io/output_folder.hpp); may throw InputError.
+  std::function<void()> prepare_output;
 };
 
 /// Figures of a finished run (times are wall-clock seconds).
@@ -50,8 +54,9 @@ struct RunSummary {
 /// The summary as printed at the end of `cushion run` (the benchmark script reads these lines).
 std::string format_summary(const RunSummary& summary);
 
-/// Runs every step of `loaded` (see the file comment). Throws InputError for a case the solver
-/// cannot build (e.g. cholmod with F-bar), AnalysisError when a step cannot be completed,
+/// Runs every step of `loaded` (see the file comment). Throws InputError, before anything is written,
+/// for a case the solver cannot build (e.g. cholmod with F-bar) and for contact input that fails
+/// check_contacts_before_run; AnalysisError when a step cannot be completed,
 /// Interrupted after Ctrl-C (call inside an InterruptGuard); the files written until then are complete.
 RunSummary run_analysis(const LoadedCase& loaded, const RunOptions& options);
 

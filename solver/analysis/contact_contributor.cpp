@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <set>
 
 #include "io/input_error.hpp"
 #include "io/text_support.hpp"
@@ -14,21 +15,30 @@ namespace {
 
 std::string fmt(const char* format, double x) { return io::format_with(format, x); }
 
-const std::vector<int>& node_set(const AnalysisContext& ctx, const ContactSpec& spec) {
-  const auto it = ctx.mesh().node_sets.find(spec.set);
-  if (it == ctx.mesh().node_sets.end())
-    throw InputError(ctx.spec().file.string() + ": " + spec.key + ".set: unknown node set \"" + spec.set + "\"");
+const std::vector<int>& node_set(const mesh::Mesh& mesh, const CaseSpec& spec, const ContactSpec& c) {
+  const auto it = mesh.node_sets.find(c.set);
+  if (it == mesh.node_sets.end())
+    throw InputError(spec.file.string() + ": " + c.key + ".set: unknown node set \"" + c.set + "\"");
   return it->second;
 }
 
-ContactSet build_set(const ContactSpec& spec, const AnalysisContext& ctx) {
-  const std::string where = ctx.spec().file.string() + ": " + spec.key;
+/// The contact set of `c` on `mesh` (InputErrors prefixed by "<case file>: <c.key>").
+ContactSet build_set(const ContactSpec& c, const mesh::Mesh& mesh, const CaseSpec& spec) {
+  const std::string where = spec.file.string() + ": " + c.key;
   try {
-    return ContactSet(spec.name, ctx.mesh(), node_set(ctx, spec), make_indenter(spec.indenter, where + ".indenter"),
-                      spec.parameters);
+    return ContactSet(c.name, mesh, node_set(mesh, spec, c), make_indenter(c.indenter, where + ".indenter"), c.parameters);
   } catch (const InputError& e) {
     const std::string what = e.what();
     throw InputError(what.rfind(where, 0) == 0 ? what : where + ": " + what);
+  }
+}
+
+/// check_no_initial_penetration at displacements u, as an InputError naming the case file and c.key.
+void check_start(const ContactSet& set, const Eigen::VectorXd& u, double time, const ContactSpec& c, const CaseSpec& spec) {
+  try {
+    check_no_initial_penetration(set, u, "at t = " + fmt("%g", time) + " s");
+  } catch (const InputError& e) {
+    throw InputError(spec.file.string() + ": " + c.key + ": " + e.what());
   }
 }
 
@@ -41,7 +51,7 @@ std::vector<std::string> contact_history_columns(const std::string& n) {
 }
 
 ContactContributor::ContactContributor(const ContactSpec& spec, AnalysisContext& ctx)
-    : ctx_(ctx), set_(build_set(spec, ctx)), force_factor_(spec.force_factor),
+    : ctx_(ctx), set_(build_set(spec, ctx.mesh(), ctx.spec())), force_factor_(spec.force_factor),
       history_(ctx.output().pvd_file().parent_path() / ("contact_" + spec.name + ".csv"),
                contact_history_columns(spec.name),
                {"contact '" + spec.name + "': " + set_.surface().describe(),
@@ -60,13 +70,7 @@ void ContactContributor::begin_step(const ContactSpec& spec, const StepSpec& ste
   contact_in_step_ = false;
   if (!checked_start_) {
     set_.set_position(committed_position_);
-    char when[64];
-    std::snprintf(when, sizeof when, "at t = %g s", ctx_.model().time);
-    try {
-      check_no_initial_penetration(set_, ctx_.model().u, when);
-    } catch (const InputError& e) {
-      throw InputError(ctx_.spec().file.string() + ": " + spec.key + ": " + e.what());
-    }
+    check_start(set_, ctx_.model().u, ctx_.model().time, spec, ctx_.spec());
     checked_start_ = true;
   }
 }
@@ -141,6 +145,18 @@ std::vector<std::shared_ptr<ResidualContributor>> step_contacts(AnalysisContext&
     out.push_back(std::move(contact));
   }
   return out;
+}
+
+void check_contacts_before_run(const LoadedCase& loaded) {
+  const CaseSpec& spec = loaded.spec;
+  const Eigen::VectorXd undeformed = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(loaded.mesh.num_nodes()));
+  std::set<std::string> built;
+  for (std::size_t s = 0; s < spec.steps.size(); ++s)
+    for (const ContactSpec& c : spec.steps[s].contact) {
+      if (!built.insert(c.name).second) continue;
+      const ContactSet set = build_set(c, loaded.mesh, spec);
+      if (s == 0) check_start(set, undeformed, 0.0, c, spec);  // later steps start from a deformed state
+    }
 }
 
 bool case_has_friction(const CaseSpec& spec) {

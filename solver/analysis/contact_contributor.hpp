@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "solver/analysis/step.hpp"
+#include "solver/case/case_file.hpp"
 #include "solver/case/contact_spec.hpp"
 #include "solver/contact/contact_set.hpp"
 #include "solver/output/history_csv.hpp"
@@ -61,6 +62,12 @@ class ContactContributor final : public ResidualContributor {
 /// kept), each prepared for the step (begin_step).
 std::vector<std::shared_ptr<ResidualContributor>> step_contacts(AnalysisContext& ctx, const StepSpec& step,
                                                                 const DofMap& dofs);
+
+/// The contact checks that need no solution, run before anything is written: every contact's set and
+/// indenter are built (nodes off the surface, an open STL ... are InputErrors naming the case file and
+/// the contact's key) and the contacts of the first step must not start inside the block (at t = 0 the
+/// mesh is undeformed). A contact first used in a later step is checked for penetration when it starts.
+void check_contacts_before_run(const LoadedCase& loaded);
 
 /// True if any step of the case uses friction (the tangent is then unsymmetric: LU solver).
 bool case_has_friction(const CaseSpec& spec);

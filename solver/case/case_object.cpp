@@ -44,6 +44,26 @@ void check_unit(const nlohmann::json& value, const Context& ctx, const std::stri
   }
 }
 
+/// Largest magnitude of a number in a case file, and of a length (a key ending in "_mm", not "_per_mm"): beyond them a value
+/// is a typo or an overflow waiting to happen (1e308 mm), never a seat.
+constexpr double kLargestNumber = 1e12, kLargestLength = 1e6;
+
+/// Throws, naming the key (and the index in an array), if a number of member `key` is past its bound.
+void check_magnitude(const nlohmann::json& value, const Context& ctx, const std::string& path, const std::string& key) {
+  const auto [stem, unit] = split_unit(key);
+  const bool length = unit == "mm" && !(stem.size() >= 4 && stem.compare(stem.size() - 4, 4, "_per") == 0);
+  const double bound = length ? kLargestLength : kLargestNumber;
+  const auto check = [&](const nlohmann::json& x, const std::string& where) {
+    if (x.is_number() && !(std::abs(x.get<double>()) <= bound))
+      io::JsonNode(x, ctx.source, where)
+          .fail("must be within +-" + io::format_double(bound) + (length ? " mm" : "") + ", found " +
+                io::format_double(x.get<double>()));
+  };
+  const nlohmann::json& member = value[key];
+  if (!member.is_array()) return check(member, join(path, key));
+  for (std::size_t i = 0; i < member.size(); ++i) check(member[i], join(path, key) + "[" + std::to_string(i) + "]");
+}
+
 }  // namespace
 
 std::string join(const std::string& path, const std::string& key) { return path.empty() ? key : path + "." + key; }
@@ -54,6 +74,7 @@ Obj::Obj(const nlohmann::json& value, const Context& ctx, std::string path, cons
     for (const auto& [key, ignored] : value.items())
       if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) check_unit(value, ctx, path_, key, allowed);
   node_.expect_object(allowed);
+  for (const auto& [key, ignored] : value.items()) check_magnitude(value, ctx, path_, key);
 }
 
 Obj Obj::child(const std::string& key, const std::vector<std::string>& allowed) const {
@@ -111,6 +132,7 @@ std::filesystem::path Obj::file(const std::string& key) const {
   const std::string name = string(key);
   if (name.empty()) fail(key, "must name a file");
   const std::filesystem::path p = ctx_.folder / name;
+  if (std::filesystem::is_directory(p)) fail(key, "is a folder, not a file: " + p.string());
   if (!std::filesystem::is_regular_file(p)) fail(key, "file not found: " + p.string());
   return p;
 }

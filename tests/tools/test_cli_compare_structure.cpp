@@ -146,14 +146,14 @@ struct Runs {
     for (const auto& [name, material] : {std::pair{"meas_damping", hidden() / "truth_material_stiffness_damping.json"},
                                          std::pair{"model_base", base}}) {
       write_sweep_case(dir / (std::string(name) + "_sweep.json"), material);
-      run_case(dir / (std::string(name) + "_sweep.json"), dir / name);
+      run_case(dir / (std::string(name) + "_sweep.json"), dir / (std::string(name) + "_sweep"));  // a folder per run
     }
     // 0.015 N: 0.45% of the peak force (3.4 N), well above the FE's own roughness (~0.001 N) and its time
     // discretisation error (25 vs 60 increments: ~0.005 N RMS); friction adds +-0.16 N (0.4 kPa x 400 mm^2).
     write_indentation_measurement(dir / "meas_control", dir / "punch_control.csv", 0.015, 1);
     write_indentation_measurement(dir / "meas_friction", dir / "punch_friction.csv", 0.015, 2);
-    write_stiffness_measurement(dir / "model_base", dir / "sweep_control.csv", 0.005, 0.1, 3);
-    write_stiffness_measurement(dir / "meas_damping", dir / "sweep_damping.csv", 0.005, 0.1, 4);
+    write_stiffness_measurement(dir / "model_base_sweep", dir / "sweep_control.csv", 0.005, 0.1, 3);
+    write_stiffness_measurement(dir / "meas_damping_sweep", dir / "sweep_damping.csv", 0.005, 0.1, 4);
   }
 };
 
@@ -172,6 +172,7 @@ TEST(CliCompareStructure, TruthIsAtTheNoiseLevel) {
   fs::create_directories(d);
   write_campaign(d, "../punch_control.csv", "../sweep_control.csv");
   const CommandRun r = run_cushion("compare " + quoted(d / "campaign.json") + " --run " + quoted(runs().dir / "model_base") +
+                                   " --run " + quoted(runs().dir / "model_base_sweep") +
                                    " -o " + quoted(d / "out"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("every test is at the noise level"), std::string::npos) << r.output;
@@ -198,6 +199,7 @@ TEST(CliCompareStructure, HiddenEffectsShowBeyondNoiseInTheirRegion) {
   fs::create_directories(d);
   write_campaign(d, "../punch_friction.csv", "../sweep_damping.csv");
   const CommandRun r = run_cushion("compare " + quoted(d / "campaign.json") + " --run " + quoted(runs().dir / "model_base") +
+                                   " --run " + quoted(runs().dir / "model_base_sweep") +
                                    " -o " + quoted(d / "out") + " --label base --history " + quoted(d / "history"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("some tests fail beyond noise"), std::string::npos) << r.output;

@@ -129,8 +129,16 @@ TEST_F(CliFit, WritesEveryOutputAndAReadableMaterial) {
   EXPECT_EQ(def.spec.hyperfoam[0].mu, same.spec.hyperfoam[0].mu);
   EXPECT_EQ(json["tests"].size(), 2u);
   EXPECT_NE(read(out / "abaqus_refit.inp").find("*HYPERFOAM, N=3, MODULI=LONG TERM"), std::string::npos);
-  // A second run may replace an earlier fit output.
-  EXPECT_EQ(run_cushion("fit " + quoted(campaign() / "campaign.json") + " -o " + quoted(out)).exit_code, 0);
+  // A second run replaces an earlier fit output with --overwrite only; without it, the folder is refused
+  // before the fit runs and stays as it was.
+  const auto before = cli_test::listing(out);
+  cli_test::expect_input_error(run_cushion("fit " + quoted(campaign() / "campaign.json") + " -o " + quoted(out)),
+                               {out.string() + ": --output: the folder exists and is not empty", "--overwrite"});
+  EXPECT_EQ(cli_test::listing(out), before);
+  write(out / "stale.txt", "left by hand\n");
+  EXPECT_EQ(run_cushion("fit " + quoted(campaign() / "campaign.json") + " -o " + quoted(out) + " --overwrite").exit_code, 0);
+  EXPECT_TRUE(fs::exists(out / "material.json"));
+  EXPECT_FALSE(fs::exists(out / "stale.txt"));
 }
 
 TEST_F(CliFit, MissingOrMisspeltColumnsAndOtherUnits) {

@@ -60,10 +60,10 @@ TEST(CliRun, GoodRunPrintsProgressSummaryAndWritesFiles) {
 
 TEST(CliRun, BadInputIsOneLineWithExitCode2) {
   const fs::path dir = scratch_dir();
-  // Argument errors: CLI11's non-zero code; a missing case file: an input error, exit code 2.
+  // Argument errors and a missing case file: one line, exit code 2.
   for (const std::string& args : {std::string("run"), std::string("run x.json"), std::string("run x.json -o o --threads -1")}) {
     const CommandRun run = run_cushion(args);
-    EXPECT_NE(run.exit_code, 0) << args << "\n" << run.output;
+    EXPECT_EQ(run.exit_code, 2) << args << "\n" << run.output;
     EXPECT_EQ(count(run.output, "\n"), 1u) << run.output;
   }
   const CommandRun missing = run_cushion(std::string("run \"") + (dir / "missing.json").string() + "\" -o out");
