@@ -1,8 +1,10 @@
 #include "solver/analysis/contact_contributor.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <set>
+#include <stdexcept>
 
 #include "io/input_error.hpp"
 #include "io/text_support.hpp"
@@ -20,6 +22,35 @@ const std::vector<int>& node_set(const mesh::Mesh& mesh, const CaseSpec& spec, c
   if (it == mesh.node_sets.end())
     throw InputError(spec.file.string() + ": " + c.key + ".set: unknown node set \"" + c.set + "\"");
   return it->second;
+}
+
+/// The first step of the case naming the contact `name`.
+const StepSpec& first_step_with(const CaseSpec& spec, const std::string& name) {
+  for (const StepSpec& step : spec.steps)
+    for (const ContactSpec& c : step.contact)
+      if (c.name == name) return step;
+  throw std::logic_error("contact '" + name + "' is in no step");
+}
+
+/// The comment lines of contact_<name>.csv: the indenter, what U and F are, which values are full-model ones.
+std::vector<std::string> history_comments(const ContactSet& set, double force_factor, const Vec3& factors) {
+  std::vector<std::string> out{"contact '" + set.name() + "': " + set.surface().describe(),
+                               "U = indenter translation [mm]; F = force of the indenter on the foam [N]"};
+  if (force_factor == 1.0) {
+    out.push_back("forces and area are the model's (force_factor 1)");
+  } else {
+    std::string zero;
+    for (int i = 0; i < 3; ++i)
+      if (factors(i) == 0.0) zero += std::string(zero.empty() ? "" : ", ") + "F" + std::to_string(i + 1);
+    out.push_back("full-model values: forces, normal_force and area = model x force_factor " + fmt("%g", force_factor) +
+                  (zero.empty() ? std::string()
+                                : "; " + zero + " = 0 (normal to a symmetry plane through the contact surface: "
+                                              "they cancel in the full model)") +
+                  "; mean_pressure, penetration and node counts are the model's");
+  }
+  out.push_back("area = deformed foam surface within tolerance_mm of the indenter (faces sampled 8 x 8); "
+                "slipping_nodes: closed nodes at the Coulomb limit, or every closed node without friction");
+  return out;
 }
 
 /// The contact set of `c` on `mesh` (InputErrors prefixed by "<case file>: <c.key>").
@@ -44,6 +75,22 @@ void check_start(const ContactSet& set, const Eigen::VectorXd& u, double time, c
 
 }  // namespace
 
+Vec3 full_model_factors(double force_factor, const StepSpec& step, const mesh::Mesh& mesh,
+                        const std::vector<int>& contact_nodes) {
+  Vec3 factors = Vec3::Constant(force_factor);
+  if (force_factor == 1.0) return factors;
+  const std::set<int> contact(contact_nodes.begin(), contact_nodes.end());
+  for (const BoundarySpec& bc : step.boundary) {
+    if (bc.kind != BoundarySpec::Kind::symmetry) continue;
+    const auto set = mesh.node_sets.find(bc.set);
+    if (set == mesh.node_sets.end()) continue;
+    const bool cuts = std::any_of(set->second.begin(), set->second.end(), [&](int a) { return contact.count(a) > 0; });
+    for (int i = 0; i < 3; ++i)
+      if (cuts && bc.dofs[i]) factors(i) = 0.0;
+  }
+  return factors;
+}
+
 std::vector<std::string> contact_history_columns(const std::string& n) {
   return {n + ".U1_mm", n + ".U2_mm", n + ".U3_mm", n + ".F1_N", n + ".F2_N", n + ".F3_N", n + ".normal_force_N",
           n + ".area_mm2", n + ".mean_pressure_kPa", n + ".max_penetration_mm", n + ".active_nodes",
@@ -52,11 +99,10 @@ std::vector<std::string> contact_history_columns(const std::string& n) {
 
 ContactContributor::ContactContributor(const ContactSpec& spec, AnalysisContext& ctx)
     : ctx_(ctx), set_(build_set(spec, ctx.mesh(), ctx.spec())), force_factor_(spec.force_factor),
+      force_factors_(full_model_factors(spec.force_factor, first_step_with(ctx.spec(), spec.name), ctx.mesh(),
+                                        set_.nodes())),
       history_(ctx.output().pvd_file().parent_path() / ("contact_" + spec.name + ".csv"),
-               contact_history_columns(spec.name),
-               {"contact '" + spec.name + "': " + set_.surface().describe(),
-                "U = indenter translation; F = force of the indenter on the foam; forces and area x force_factor " +
-                    fmt("%g", spec.force_factor)}) {
+               contact_history_columns(spec.name), history_comments(set_, spec.force_factor, force_factors_)) {
   const std::vector<double> zeros(contact_history_columns(spec.name).size(), 0.0);
   history_.write_row(ctx.model().time, zeros);
 }
@@ -109,7 +155,8 @@ void ContactContributor::commit() {
   const ContactTotals t = set_.totals();
   const Vec3 c = set_.position();
   const double f = force_factor_;
-  const std::vector<double> row{c.x(), c.y(), c.z(), f * t.force.x(), f * t.force.y(), f * t.force.z(),
+  const Vec3 F = force_factors_.cwiseProduct(t.force);
+  const std::vector<double> row{c.x(), c.y(), c.z(), F.x(), F.y(), F.z(),
                                 f * t.normal_force, f * t.area, 1e3 * t.mean_pressure, t.max_penetration,
                                 double(t.active), double(t.slipping), double(set_.augmentations())};
   set_.commit();

@@ -15,8 +15,16 @@
 
 namespace cushion::solver {
 
-/// Columns of contact_<name>.csv after "time_s" (forces and area multiplied by force_factor).
+/// Columns of contact_<name>.csv after "time_s" (full-model forces and area: full_model_factors).
 std::vector<std::string> contact_history_columns(const std::string& name);
+
+/// Factors from the model's contact force components (x, y, z) to the full model's: force_factor, except
+/// 0 for a component normal to a mirror plane of a reduced model (force_factor != 1 and a symmetry_x|y|z
+/// condition of `step` on a node set that shares nodes with the contact set `contact_nodes`): the force on
+/// the mirrored parts cancels it (a quarter model: F1 = F2 = 0). A symmetry condition away from the
+/// contact surface (a base on rollers) is not a mirror plane. All factors are 1 when force_factor is 1.
+Vec3 full_model_factors(double force_factor, const StepSpec& step, const mesh::Mesh& mesh,
+                        const std::vector<int>& contact_nodes);
 
 class ContactContributor final : public ResidualContributor {
  public:
@@ -46,6 +54,7 @@ class ContactContributor final : public ResidualContributor {
   AnalysisContext& ctx_;
   ContactSet set_;
   double force_factor_;
+  Vec3 force_factors_;  ///< full_model_factors of the first step naming the contact
   HistoryWriter history_;
   // step data
   ContactSpec step_spec_;

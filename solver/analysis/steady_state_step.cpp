@@ -367,7 +367,8 @@ std::vector<std::string> sweep_comments(const AnalysisContext& ctx, const StepSp
   return comments;
 }
 
-/// Writes <step>_sweep.csv and, if output.vtk, the frames of <step>_sweep.pvd (time = frequency).
+/// Writes <step>_sweep.csv and, if output.vtk, the frames of <step>_sweep.pvd (time = frequency [Hz], on
+/// the deformed base state: write_frequency_frame).
 void write_sweep(AnalysisContext& ctx, const StepSpec& step, const SweepSetup& setup, const SweepResult& result) {
   std::vector<SweepRow> rows;
   for (const auto& r : result.responses) rows.push_back(make_row(r, setup.measure, setup.geometry));
@@ -375,7 +376,10 @@ void write_sweep(AnalysisContext& ctx, const StepSpec& step, const SweepSetup& s
   write_sweep_csv(dir / (step.name + "_sweep.csv"), rows, sweep_comments(ctx, step, setup));
   if (step.steady_state.vtk) {
     ResultSeries series(dir, step.name + "_sweep");
-    for (const auto& r : result.responses) write_frequency_frame(series, ctx.mesh(), r);
+    const LinearisedSystem& system = *setup.model.system;
+    const LinearisedSystem::ElementBase base = system.element_base();
+    for (const auto& r : result.responses)
+      write_frequency_frame(series, ctx.mesh(), system, base, r, setup.component);
   }
 }
 

@@ -16,7 +16,8 @@
 /// (transmissibility). An indenter named by the sweep without a closed node is an InputError.
 /// Outputs in the run folder: <step>_sweep.csv (one row per frequency, written at the end of the
 /// sweep in one piece) and, if output.vtk, <step>_sweep.pvd + <step>_sweep_NNNN.vtu (time = frequency
-/// [Hz]); one progress line per frequency. Frequencies are solved on up to 2 threads.
+/// [Hz]; base displacement and stress plus the harmonic amplitudes: dynamics::write_frequency_frame);
+/// one progress line per frequency. Frequencies are solved on up to 2 threads.
 #include "solver/analysis/step.hpp"
 
 namespace cushion::solver {

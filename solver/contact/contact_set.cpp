@@ -26,6 +26,54 @@ std::pair<double, double> smooth_ramp(double x, double w) {
   return {y * y / (2.0 * w), y / w};
 }
 
+/// Corner nodes of the faces of the set, as indices into `nodes` (quads: 4 in cyclic order, triangles: 3).
+std::vector<std::vector<int>> set_faces(const mesh::Mesh& mesh, const std::vector<int>& nodes) {
+  std::vector<int> index(mesh.num_nodes(), -1);
+  for (std::size_t k = 0; k < nodes.size(); ++k) index[nodes[k]] = static_cast<int>(k);
+  std::vector<std::vector<int>> faces;
+  for (const mesh::Face& f : mesh::surface_from_node_set(mesh, nodes)) {
+    const mesh::Element& el = mesh.elements[f.element];
+    const std::vector<int> local = mesh::face_nodes(el.type, f.face);
+    const std::size_t corners = el.type == mesh::ElementType::hex8 ? 4 : 3;
+    std::vector<int> face;
+    for (std::size_t c = 0; c < corners; ++c) face.push_back(index[el.nodes[local[c]]]);
+    faces.push_back(std::move(face));
+  }
+  return faces;
+}
+
+/// Integral [mm^2] of weight(x, n) over a face (corner positions y, indenter frame; n its unit normal at x)
+/// from n x n sample points: midpoints of a bilinear quad's parameter cells, centroids of a triangle's n^2
+/// sub-triangles.
+template <class Weight>
+double integrate_face(const std::vector<Vec3>& y, const Weight& weight) {
+  constexpr int n = 8;
+  double sum = 0.0;
+  if (y.size() == 4) {
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        const double a = (i + 0.5) / n, b = (j + 0.5) / n;
+        const Vec3 x = (1 - a) * (1 - b) * y[0] + a * (1 - b) * y[1] + a * b * y[2] + (1 - a) * b * y[3];
+        const Vec3 da = (1 - b) * (y[1] - y[0]) + b * (y[2] - y[3]), db = (1 - a) * (y[3] - y[0]) + a * (y[2] - y[1]);
+        const Vec3 normal = da.cross(db);
+        const double dA = normal.norm() / (n * n);
+        if (dA > 0.0) sum += dA * weight(x, Vec3(normal / (n * n * dA)));
+      }
+    return sum;
+  }
+  const Vec3 normal = 0.5 * (y[1] - y[0]).cross(y[2] - y[0]);
+  const double dA = normal.norm() / (n * n);
+  if (!(dA > 0.0)) return 0.0;
+  const Vec3 unit = normal.normalized();
+  auto sample = [&](double a, double b) { sum += dA * weight(y[0] + a / n * (y[1] - y[0]) + b / n * (y[2] - y[0]), unit); };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; i + j < n; ++j) {
+      sample(i + 1.0 / 3.0, j + 1.0 / 3.0);                     // upward sub-triangle
+      if (i + j < n - 1) sample(i + 2.0 / 3.0, j + 2.0 / 3.0);  // downward sub-triangle
+    }
+  return sum;
+}
+
 }  // namespace
 
 std::vector<double> tributary_areas(const mesh::Mesh& mesh, const std::vector<int>& nodes) {
@@ -56,6 +104,7 @@ ContactSet::ContactSet(std::string name, const mesh::Mesh& mesh, std::vector<int
   if (!(p_.tolerance > 0.0)) throw InputError(where + ": penetration tolerance must be > 0 mm");
   if (p_.smoothing < 0.0) p_.smoothing = 0.5 * p_.tolerance;
   area_ = tributary_areas(mesh_, nodes_);
+  faces_ = set_faces(mesh_, nodes_);
   int off_surface = 0, first = -1;
   for (std::size_t k = 0; k < nodes_.size(); ++k)
     if (!(area_[k] > 0.0)) ++off_surface, first = first < 0 ? nodes_[k] : first;
@@ -76,6 +125,7 @@ ContactSet::ContactSet(std::string name, const mesh::Mesh& mesh, std::vector<int
   touching_.assign(n, 0), touching_trial_ = touching_;
   gap_.assign(n, INFINITY), t_N_.assign(n, 0.0), grad_norm_.assign(n, 1.0);
   force_.assign(n, Vec3::Zero());
+  y_.assign(n, Vec3::Zero());
   status_.assign(n, ContactStatus::open);
 }
 
@@ -102,12 +152,13 @@ void ContactSet::evaluate_at(const Vec3& c, const Vec3& dc, const Eigen::VectorX
     Vec3 F = Vec3::Zero();        // force on the node [N]
     Mat3 dF = Mat3::Zero();       // dF/dx [N/mm]
     gap_[k] = gp.g;
+    y_[k] = y;
     grad_norm_[k] = gp.grad.norm();
     if (t_N > 0.0) {
       t_N_[k] = t_N;
       F = t_N * gp.grad;
       dF = -eps * dt_N * gp.grad * gp.grad.transpose() + t_N * gp.hess;
-      status_[k] = ContactStatus::stick;
+      status_[k] = mu > 0.0 ? ContactStatus::stick : ContactStatus::slip;  // frictionless: slides freely
       touching_trial_[k] = 1;
       xi_trial_[k] = y;
       if (mu > 0.0 && touching_[k]) {
@@ -198,11 +249,31 @@ ContactTotals ContactSet::totals() const {
     ++t.active;
     if (status_[k] == ContactStatus::slip) ++t.slipping;
     t.normal_force += t_N_[k] * grad_norm_[k];
-    t.area += area_[k];
     t.max_penetration = std::max(t.max_penetration, -gap_[k]);
   }
+  if (t.active > 0) t.area = contact_area();
   if (t.area > 0.0) t.mean_pressure = t.normal_force / t.area;
   return t;
+}
+
+double ContactSet::contact_area() const {
+  // In contact: gap within the penetration tolerance [mm] (a node carrying force may sit at g > 0 once its
+  // multiplier exceeds its force, e.g. while the foam relaxes under a held indenter).
+  const double touching = p_.tolerance;
+  double area = 0.0;
+  std::vector<Vec3> y;
+  for (const std::vector<int>& face : faces_) {
+    if (std::none_of(face.begin(), face.end(), [&](int k) { return t_N_[k] > 0.0; })) continue;
+    y.clear();
+    for (int k : face) y.push_back(y_[k]);
+    // Projected on the indenter's surface: |n_foam . n_indenter| dA where the foam touches (gap <= touching).
+    area += integrate_face(y, [&](const Vec3& x, const Vec3& n) {
+      const GapPoint gp = surface_->gap(x);
+      const double grad = gp.grad.norm();
+      return gp.g <= touching && grad > 0.0 ? std::abs(n.dot(gp.grad)) / grad : 0.0;
+    });
+  }
+  return area;
 }
 
 std::pair<double, int> ContactSet::penetration_at(const Eigen::VectorXd& u) const {

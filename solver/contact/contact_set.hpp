@@ -31,19 +31,20 @@
 
 namespace cushion::solver {
 
-/// Node status for output.
+/// Node status for output (frame array "<name>_status"; -1 there: node not in the contact set).
+/// A closed node without friction slides freely: it is `slip`, never `stick`.
 enum class ContactStatus { open = 0, stick = 1, slip = 2 };
 
 /// Sums over the contact set at the last evaluation (indenter frame = reference axes).
 struct ContactTotals {
   Vec3 force = Vec3::Zero();  ///< total force of the indenter on the foam [N]
   double normal_force = 0.0;  ///< sum of the normal force magnitudes t_N |grad g| [N]
-  double area = 0.0;          ///< tributary area of the nodes in contact (reference config) [mm^2]
+  double area = 0.0;          ///< contact area (ContactSet::contact_area) [mm^2]
   double mean_pressure = 0.0; ///< normal_force / area [MPa] (0 without contact)
   double max_penetration = 0.0;  ///< largest -g over nodes carrying force [mm] (>= 0)
   double min_gap = 0.0;       ///< smallest g over the set [mm]
   int active = 0;             ///< nodes carrying normal force
-  int slipping = 0;           ///< of which slipping
+  int slipping = 0;           ///< of which slipping (all of them without friction)
 };
 
 /// Outcome of one Uzawa update.
@@ -91,12 +92,21 @@ class ContactSet {
 
   /// Totals of the last evaluation (or of the committed state after commit()).
   ContactTotals totals() const;
+  /// Contact area of the last evaluation [mm^2]: the deformed foam surface (faces of the set with a
+  /// closed node, current configuration) where it touches the indenter (gap <= `tolerance`, the band in
+  /// which the contact counts as closed), projected on the indenter's surface: integral of
+  /// |n_foam . n_indenter| dA, n_indenter =
+  /// grad g / |grad g|, by 8 x 8 sample points per face (bilinear quads, subdivided triangles). Unlike the
+  /// tributary areas of the closed nodes (which count whole the share of a node just outside the
+  /// indenter's edge) it cannot exceed the indenter's surface: for a flat punch it is at most the
+  /// footprint pi R^2 plus the tolerance band around its edge (2 pi R x tolerance).
+  double contact_area() const;
   /// Largest penetration of the set at u [mm] (0 if none), and the node label where it occurs.
   std::pair<double, int> penetration_at(const Eigen::VectorXd& u) const;
 
   /// Per-node arrays of the last evaluation for a frame (size = mesh nodes; nodes not in the set:
   /// pressure 0, gap NaN, status -1): "<name>_pressure_kPa", "<name>_gap_mm", "<name>_status"
-  /// (0 open, 1 stick, 2 slip), "<name>_force_N" (vector, force on the foam).
+  /// (-1 not in the set, 0 open, 1 stick, 2 slip; ContactStatus), "<name>_force_N" (vector, force on the foam).
   void add_frame_fields(FrameData& frame) const;
 
   const std::string& name() const { return name_; }
@@ -123,6 +133,7 @@ class ContactSet {
   ContactParameters p_;
   Vec3 position_ = Vec3::Zero();
   std::vector<double> area_;
+  std::vector<std::vector<int>> faces_;  ///< corner nodes (indices k into nodes_) of the set's faces, in order
   // committed and trial per-node state
   std::vector<double> lambda_, lambda_trial_;
   std::vector<Vec3> xi_, xi_trial_;        ///< stick points in the indenter frame [mm]
@@ -130,6 +141,7 @@ class ContactSet {
   // last evaluation (output)
   std::vector<double> gap_, t_N_, grad_norm_;
   std::vector<Vec3> force_;
+  std::vector<Vec3> y_;  ///< current node positions in the indenter frame [mm]
   std::vector<ContactStatus> status_;
   int augmentations_ = 0;
   int switches_ = 0;

@@ -1,5 +1,6 @@
 #include "solver/dynamics/linearised_system.hpp"
 
+#include <algorithm>
 #include <mutex>
 #include <stdexcept>
 
@@ -29,6 +30,26 @@ class FrozenTangent final : public material::Material {
   }
   std::string describe() const override { return "frozen tangent (linearised system)"; }
 };
+
+using cplx = std::complex<double>;
+
+/// Linearised Cauchy stress J^-1 F S F^T at F, S [MPa] in the direction dF (complex amplitude), with
+/// dS = C : dE, dE = sym(F^T dF) (C maps engineering-shear strain to stress, material/tensor.hpp).
+Mat3c cauchy_increment(const Mat3& F, const Vec6& S_voigt, const Mat6c& C, const Mat3c& dF) {
+  const Mat3c Fc = F.cast<cplx>(), S = from_voigt_stress(S_voigt).cast<cplx>();
+  const double J = F.determinant();
+  const Mat3c dE = 0.5 * (Fc.transpose() * dF + dF.transpose() * Fc);
+  Vec6c dE_voigt;
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j) dE_voigt(voigt_index(i, j)) = (i == j ? 1.0 : 2.0) * dE(i, j);
+  const Vec6c dS_voigt = C * dE_voigt;
+  Mat3c dS;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) dS(i, j) = dS_voigt(voigt_index(i, j));
+  const Mat3c sigma = Fc * S * Fc.transpose() / J;
+  const cplx dlogJ = (F.inverse().cast<cplx>() * dF).trace();
+  return (dF * S * Fc.transpose() + Fc * S * dF.transpose() + Fc * dS * Fc.transpose()) / J - sigma * dlogJ;
+}
 
 }  // namespace
 
@@ -151,6 +172,71 @@ SparseMatrix LinearisedSystem::assemble_part(const std::vector<Mat6c>& C, bool i
   const AssemblyStatus status = A.assemble(m.u_base, m.u_base, 0.0, m.state, f_int, &K);
   if (status.failed()) throw std::runtime_error("linearised stiffness: " + status.message);
   return K;
+}
+
+std::vector<PointOutput> LinearisedSystem::point_outputs(const Eigen::VectorXd& u) const {
+  const std::lock_guard<std::mutex> lock(impl_->assembly);
+  std::vector<PointOutput> out;
+  Eigen::VectorXd f_int;
+  const AssemblyStatus status = impl_->frozen->assemble(u, u, 0.0, impl_->state, f_int, nullptr, &out);
+  if (status.failed()) throw std::runtime_error("linearised system: " + status.message);
+  return out;
+}
+
+template <class T, class Value>
+std::vector<T> LinearisedSystem::element_average(const std::vector<PointOutput>& points, const Value& value) const {
+  const Assembler& A = *impl_->frozen;
+  std::vector<T> out(impl_->mesh.num_elements(), T::Zero());
+  for (std::size_t e = 0; e < out.size(); ++e) {
+    if (A.section_of(static_cast<int>(e)) < 0) continue;
+    double V = 0.0;
+    for (int q = 0; q < num_points(impl_->mesh.elements[e].type); ++q) {
+      const std::size_t k = A.point_offset(static_cast<int>(e)) + q;
+      out[e] += points[k].dV0 * value(k);
+      V += points[k].dV0;
+    }
+    out[e] /= V;
+  }
+  return out;
+}
+
+const Eigen::VectorXd& LinearisedSystem::base_displacement() const { return impl_->u_base; }
+
+LinearisedSystem::ElementBase LinearisedSystem::element_base() const {
+  const std::vector<PointOutput> p = point_outputs(impl_->u_base);
+  const std::vector<PointBase>& base = impl_->points;
+  ElementBase out;
+  out.cauchy = element_average<Mat3>(p, [&](std::size_t k) {
+    return Mat3(cauchy_from_pk2(base[k].F, from_voigt_stress(base[k].S_geo)));
+  });
+  out.F = element_average<Mat3>(p, [&](std::size_t k) { return base[k].F; });
+  // Elements without a section average nothing: F = I there.
+  for (std::size_t e = 0; e < out.F.size(); ++e)
+    if (impl_->frozen->section_of(static_cast<int>(e)) < 0) out.F[e] = Mat3::Identity();
+  return out;
+}
+
+std::vector<Mat3c> LinearisedSystem::cauchy_perturbation(double omega, const Eigen::VectorXcd& u_hat) const {
+  const Eigen::Index n = static_cast<Eigen::Index>(num_dofs());
+  if (u_hat.size() < n) throw std::invalid_argument("cauchy_perturbation: u_hat must hold 3 values per node");
+  const Eigen::VectorXcd v = u_hat.head(n);
+  const double scale = v.cwiseAbs().maxCoeff();
+  std::vector<Mat3c> dF(impl_->points.size(), Mat3c::Zero());
+  const std::vector<PointOutput> base = point_outputs(impl_->u_base);
+  if (scale > 0.0) {
+    // dF = (F(u + h w) - F(u - h w)) / 2h for w = Re, Im u_hat; h moves no node by more than 1e-4 mm.
+    const double h = 1e-4 / scale;
+    for (int part = 0; part < 2; ++part) {
+      const Eigen::VectorXd w = part == 0 ? Eigen::VectorXd(v.real()) : Eigen::VectorXd(v.imag());
+      const std::vector<PointOutput> plus = point_outputs(impl_->u_base + h * w);
+      const std::vector<PointOutput> minus = point_outputs(impl_->u_base - h * w);
+      const cplx unit = part == 0 ? cplx(1.0, 0.0) : cplx(0.0, 1.0);
+      for (std::size_t k = 0; k < dF.size(); ++k) dF[k] += unit * ((plus[k].F - minus[k].F) / (2.0 * h)).cast<cplx>();
+    }
+  }
+  const std::vector<Mat6c> C = point_tangents(omega);
+  const std::vector<PointBase>& pb = impl_->points;
+  return element_average<Mat3c>(base, [&](std::size_t k) { return cauchy_increment(pb[k].F, pb[k].S_geo, C[k], dF[k]); });
 }
 
 ComplexMatrix LinearisedSystem::stiffness(double omega) const {

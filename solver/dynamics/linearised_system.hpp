@@ -29,6 +29,8 @@ namespace cushion::solver::dynamics {
 
 /// Complex sparse matrix on all DOFs [N/mm].
 using ComplexMatrix = Eigen::SparseMatrix<std::complex<double>>;
+/// Complex 3 x 3 tensor (complex amplitude of a harmonic tensor field).
+using Mat3c = Eigen::Matrix<std::complex<double>, 3, 3>;
 
 /// Rayleigh damping matrix C = alpha M + beta K [N s/mm] from the mass M [t] and a stiffness K [N/mm]
 /// of the same size (the dynamic step's and the steady state's; Damping::structural is not used).
@@ -66,9 +68,29 @@ class LinearisedSystem {
   /// Sections with a density <= 0 (a mass matrix needs all of them > 0).
   std::vector<std::string> sections_without_density() const;
 
+  /// The base state, per element, as reference-volume averages over its quadrature points
+  /// (elements without a section: zero stress, F = I), for output.
+  struct ElementBase {
+    std::vector<Mat3> cauchy;  ///< Cauchy stress of S_geo, J^-1 F S_geo F^T [MPa], current frame
+    std::vector<Mat3> F;       ///< deformation gradient seen by the material [-]
+  };
+  ElementBase element_base() const;
+  const Eigen::VectorXd& base_displacement() const;  ///< u_base [mm], 3 per node
+
+  /// Complex amplitude of the linearised Cauchy stress perturbation per element [MPa] (reference-volume
+  /// average over its points) for the harmonic displacement u_hat [mm] (first 3 x nodes entries used) at
+  /// w [rad/s]: d sigma = J^-1 (dF S F^T + F S dF^T + F dS F^T) - sigma tr(F^-1 dF), dS = C*(w) : sym(F^T dF),
+  /// F and S = S_geo of the base state, dF = d F / d u [u_hat] (the element kernel's F, so F-bar is
+  /// included; exact for full elements, central difference for F-bar). docs/physics.md 4.
+  std::vector<Mat3c> cauchy_perturbation(double omega, const Eigen::VectorXcd& u_hat) const;
+
  private:
   std::vector<Mat6c> point_tangents(double omega) const;  ///< C*(w) per quadrature point [MPa]
   SparseMatrix assemble_part(const std::vector<Mat6c>& C, bool imaginary) const;
+  std::vector<PointOutput> point_outputs(const Eigen::VectorXd& u) const;  ///< kernel point outputs at u
+  /// Reference-volume average per element of a per-point value (zero for elements without a section).
+  template <class T, class Value>
+  std::vector<T> element_average(const std::vector<PointOutput>& points, const Value& value) const;
 
   struct Impl;
   std::unique_ptr<Impl> impl_;

@@ -7,9 +7,48 @@
 namespace cushion::solver::dynamics {
 namespace {
 
-double phase_deg(std::complex<double> z) { return std::arg(z) * 180.0 / M_PI; }
+constexpr double kPa_per_MPa = 1000.0;
+constexpr int kRow[6] = {0, 1, 2, 0, 1, 0}, kColumn[6] = {0, 1, 2, 1, 2, 2};  // Voigt XX YY ZZ XY YZ XZ
+
+/// Point arrays of the harmonic displacement u_hat [mm] (first 3 x nodes entries of u).
+std::vector<NamedField> displacement_fields(std::size_t nodes, const Eigen::VectorXcd& u, int component) {
+  NamedField re{"U_real_mm", 3, {}}, im{"U_imag_mm", 3, {}}, amp{"U_amplitude_mm", 3, {}}, ph{"U_phase_deg", 1, {}};
+  for (std::size_t a = 0; a < nodes; ++a) {
+    for (int c = 0; c < 3; ++c) {
+      const std::complex<double> z = u(static_cast<Eigen::Index>(3 * a + c));
+      re.values.push_back(z.real());
+      im.values.push_back(z.imag());
+      amp.values.push_back(std::abs(z));
+    }
+    ph.values.push_back(phase_deg(u(static_cast<Eigen::Index>(3 * a + component))));
+  }
+  return {re, im, amp, ph};
+}
+
+/// Cell arrays of the Cauchy stress perturbation sigma_hat [MPa] (written in kPa), tensors in the Voigt
+/// stress order XX YY ZZ XY YZ XZ.
+std::vector<NamedField> stress_fields(const std::vector<Mat3c>& sigma_hat, int component) {
+  NamedField re{"sigma_hat_real_kPa", 6, {}}, im{"sigma_hat_imag_kPa", 6, {}}, amp{"sigma_hat_amplitude_kPa", 6, {}},
+      ph{"sigma_hat_phase_deg", 1, {}};
+  for (const Mat3c& s : sigma_hat) {
+    for (int v = 0; v < 6; ++v) {
+      const int i = kRow[v], j = kColumn[v];
+      const std::complex<double> z = kPa_per_MPa * 0.5 * (s(i, j) + s(j, i));
+      re.values.push_back(z.real());
+      im.values.push_back(z.imag());
+      amp.values.push_back(std::abs(z));
+    }
+    ph.values.push_back(phase_deg(s(component, component)));
+  }
+  return {re, im, amp, ph};
+}
 
 }  // namespace
+
+double phase_deg(std::complex<double> z) {
+  const double deg = std::arg(z) * 180.0 / M_PI;
+  return deg <= -180.0 ? deg + 360.0 : deg;
+}
 
 double displacement_amplitude(double acceleration, AccelerationReading reading, double frequency) {
   if (!(frequency > 0.0)) throw std::invalid_argument("displacement_amplitude: frequency must be > 0 Hz");
@@ -64,22 +103,19 @@ void write_sweep_csv(const std::filesystem::path& file, const std::vector<SweepR
   std::filesystem::rename(tmp, file);
 }
 
-void write_frequency_frame(ResultSeries& series, const mesh::Mesh& mesh, const FrequencyResponse& r) {
+void write_frequency_frame(ResultSeries& series, const mesh::Mesh& mesh, const LinearisedSystem& system,
+                           const LinearisedSystem::ElementBase& base, const FrequencyResponse& r, int component) {
+  if (component < 0 || component > 2) throw std::invalid_argument("write_frequency_frame: component must be 0, 1 or 2");
   const std::size_t n = mesh.num_nodes();
   FrameData frame;
   frame.time = r.frequency;
+  const Eigen::VectorXd& u_base = system.base_displacement();
   frame.displacement.resize(n);
-  NamedField re{"U_real_mm", 3, {}}, im{"U_imag_mm", 3, {}}, amp{"U_amplitude_mm", 3, {}}, ph{"U_phase_deg", 3, {}};
-  for (std::size_t a = 0; a < n; ++a)
-    for (int c = 0; c < 3; ++c) {
-      const std::complex<double> z = r.u(static_cast<Eigen::Index>(3 * a + c));
-      frame.displacement[a](c) = z.real();
-      re.values.push_back(z.real());
-      im.values.push_back(z.imag());
-      amp.values.push_back(std::abs(z));
-      ph.values.push_back(phase_deg(z));
-    }
-  frame.point_fields = {re, im, amp, ph};
+  for (std::size_t a = 0; a < n; ++a) frame.displacement[a] = u_base.segment<3>(static_cast<Eigen::Index>(3 * a));
+  frame.cauchy_stress = base.cauchy;
+  frame.deformation_gradient = base.F;
+  frame.point_fields = displacement_fields(n, r.u, component);
+  frame.cell_fields = stress_fields(system.cauchy_perturbation(2.0 * M_PI * r.frequency, r.u), component);
   series.write_frame(mesh, frame);
 }
 

@@ -47,9 +47,24 @@ SweepRow make_row(const FrequencyResponse& r, Measure measure, const NominalGeom
 void write_sweep_csv(const std::filesystem::path& file, const std::vector<SweepRow>& rows,
                      const std::vector<std::string>& comment);
 
-/// Writes the complex displacement field of the first 3 x nodes DOFs of `r` as one frame whose
-/// "time" is the frequency [Hz]: displacement = real part, plus point arrays U_real_mm, U_imag_mm,
-/// U_amplitude_mm (per component |u^|) and U_phase_deg.
-void write_frequency_frame(ResultSeries& series, const mesh::Mesh& mesh, const FrequencyResponse& r);
+/// Phase of z in degrees, wrapped into (-180, 180] (0 for z = 0).
+double phase_deg(std::complex<double> z);
+
+/// Writes the response `r` as one frame on the DEFORMED base state of `system`, whose "time" is the
+/// frequency [Hz] (ParaView's time slider then steps through the frequencies). `component` (0, 1, 2) is
+/// the excited displacement component, the phase reference of the scalar phases. Arrays:
+///  point data: displacement_mm = base displacement u_base (Warp By Vector, scale 1, shows the preload
+///    dent); U_real_mm, U_imag_mm = Re, Im u_hat; U_amplitude_mm = per-component |u_hat_c| (its ParaView
+///    "Magnitude" is the complex amplitude |u_hat| = sqrt(sum |u_hat_c|^2)); U_phase_deg = arg u_hat_c of
+///    the excited component, in (-180, 180] (0 where u_hat_c = 0), relative to the drive (real, positive).
+///  cell data (element averages): the base state's cauchy_stress_kPa, von_mises_kPa, pressure_kPa,
+///    log_strain, principal_stretches, J (as the quasi-static frames; stress = the base stress S_geo of
+///    the linearisation, relaxed by default); the linearised Cauchy stress perturbation
+///    (LinearisedSystem::cauchy_perturbation) as sigma_hat_real_kPa, sigma_hat_imag_kPa,
+///    sigma_hat_amplitude_kPa (per-component modulus; 6 components XX YY ZZ XY YZ XZ) and
+///    sigma_hat_phase_deg (phase of the excited normal component, e.g. ZZ, in (-180, 180]).
+/// The response at time t is then u = u_base + Re(u_hat e^{i w t}), sigma = sigma_base + Re(sigma_hat e^{i w t}).
+void write_frequency_frame(ResultSeries& series, const mesh::Mesh& mesh, const LinearisedSystem& system,
+                           const LinearisedSystem::ElementBase& base, const FrequencyResponse& r, int component);
 
 }  // namespace cushion::solver::dynamics

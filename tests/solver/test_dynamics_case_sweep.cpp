@@ -3,7 +3,8 @@
 // Checks: the nominal dynamic modulus of <step>_sweep.csv equals the material's frequency-domain
 // modulus E*(w) = S33 + l3^2 C*_c(w) (C* condensed to uniaxial stress, relaxed base) to 1e-6, with
 // Rayleigh-beta and structural damping adding i (w beta + s) E(0) exactly; the displacement amplitude
-// is a/2 / (2 pi f)^2 for a peak-to-peak acceleration; the .pvd over frequency; bad input.
+// is a/2 / (2 pi f)^2 for a peak-to-peak acceleration; the .pvd over frequency (frames on the deformed base
+// state, amplitudes and the stress perturbation against the closed form); bad input.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,6 +14,7 @@
 #include "io/input_error.hpp"
 #include "io/text_support.hpp"
 #include "material/viscoelastic.hpp"
+#include "solver/output/vtu_reader.hpp"
 #include "test_run_support.hpp"
 
 namespace cushion::solver::test {
@@ -131,6 +133,66 @@ TEST(DynamicsCase, RayleighBetaAndStructuralDampingAddToTheModulus) {
     const cplx E(column(run.table, "storage_modulus_kPa", k), column(run.table, "loss_modulus_kPa", k));
     EXPECT_LT(std::abs(E / expected - 1.0), 1e-6) << freq[k];
     std::printf("  damped %5.2f Hz: relative error %.2e\n", freq[k], std::abs(E / expected - 1.0));
+  }
+}
+
+/// Values of array `name` of a frame (point or cell data); fails the test if it is missing or not finite.
+const std::vector<double>& values(const VtuContents& v, const std::string& name) {
+  const auto p = v.point_data.find(name);
+  const std::vector<double>& out = p != v.point_data.end() ? p->second.values : v.cell_data.at(name).values;
+  for (double x : out) EXPECT_TRUE(std::isfinite(x)) << name;
+  return out;
+}
+
+// The frames of the sweep sit on the DEFORMED base state: displacement_mm and the base stress arrays equal the
+// preload's last frame (long-term static, so the relaxed base stress is the committed one); the harmonic
+// amplitudes equal the closed form of the homogeneous uniaxial perturbation on rollers (lateral faces free):
+// u_hat_z = U Z / L, u_hat_x = dl1 X with dl1 from dS11 = dS22 = 0, and the linearised Cauchy stress
+// sigma_hat_zz = (dP33 - 2 P33 dl1 / l1) / l1^2, dP33 = (S33 + l3^2 C*_c) U / L; phases in (-180, 180].
+TEST(DynamicsCase, SweepFramesCarryTheBaseStateAndTheClosedFormAmplitudes) {
+  const fs::path dir = scratch_dir();
+  const SweepRun run = run_sweep(dir, sweep_text("{}", "[1, 20]"));
+  const fs::path out = dir / "out";
+  const auto [F, S33] = uniaxial_long_term(*run.mat, 0.8);
+  const double l1 = F(0, 0), l3 = F(2, 2), L = 10.0;
+  const VtuContents preload = read_vtu(out / read_pvd(out / "results.pvd").back().file);
+  const std::vector<PvdEntry> frames = read_pvd(out / "sweep_sweep.pvd");
+  ASSERT_EQ(frames.size(), 2u);
+  const double freq[] = {1, 20};
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_DOUBLE_EQ(frames[k].time, freq[k]) << "frame time = frequency [Hz]";
+    const VtuContents v = read_vtu(out / frames[k].file);
+    for (const char* name : {"displacement_mm", "cauchy_stress_kPa", "von_mises_kPa", "pressure_kPa", "log_strain", "J"}) {
+      const std::vector<double>&a = values(v, name), &b = values(preload, name);
+      ASSERT_EQ(a.size(), b.size()) << name;
+      for (std::size_t i = 0; i < a.size(); ++i) EXPECT_NEAR(a[i], b[i], 1e-9 * std::abs(b[i]) + 1e-12) << name;
+    }
+    const double w = 2 * M_PI * freq[k], U = 125.0 / (w * w);
+    const Mat6c C = run.mat->complex_tangent(F, w);
+    const Eigen::Vector2cd dE_lateral = -C.block<2, 2>(0, 0).inverse() * C.block<2, 1>(0, 2) * cplx(l3 * U / L);
+    const cplx dl1 = dE_lateral(0) / l1;
+    const cplx dP33 = material_modulus(*run.mat, F, S33, w) * (U / L);
+    const cplx dsigma33 = 1e3 * (dP33 - 2.0 * l3 * S33 * dl1 / l1) / (l1 * l1);  // [kPa]
+    const std::vector<double>&amp = values(v, "U_amplitude_mm"), &phase = values(v, "U_phase_deg");
+    ASSERT_EQ(phase.size(), v.points.size()) << "U_phase_deg is one scalar per node";
+    for (std::size_t a = 0; a < v.points.size(); ++a) {
+      EXPECT_NEAR(amp[3 * a + 2], U * v.points[a].z() / L, 1e-7 * U);
+      EXPECT_NEAR(amp[3 * a], std::abs(dl1) * v.points[a].x(), 1e-7 * U);
+      EXPECT_NEAR(phase[a], 0.0, 1e-6) << "u_hat_z in phase with the drive";
+    }
+    const std::vector<double>&re = values(v, "sigma_hat_real_kPa"), &im = values(v, "sigma_hat_imag_kPa");
+    for (std::size_t e = 0; e < re.size() / 6; ++e) {
+      EXPECT_LT(std::abs(cplx(re[6 * e + 2], im[6 * e + 2]) / dsigma33 - 1.0), 1e-6) << "element " << e;
+      EXPECT_LT(std::abs(cplx(re[6 * e], im[6 * e])), 1e-6 * std::abs(dsigma33)) << "uniaxial: sigma_hat_xx = 0";
+    }
+    for (double p : values(v, "sigma_hat_phase_deg")) {
+      EXPECT_GT(p, -180.0);
+      EXPECT_LE(p, 180.0);
+      EXPECT_NEAR(p, std::arg(dsigma33) * 180 / M_PI, 1e-4);
+    }
+    values(v, "sigma_hat_amplitude_kPa");
+    std::printf("  %g Hz: U = %.4e mm, |dl1| = %.4e, sigma_hat_zz = %.6g kPa at %.4f deg\n", freq[k], U,
+                std::abs(dl1), std::abs(dsigma33), std::arg(dsigma33) * 180 / M_PI);
   }
 }
 

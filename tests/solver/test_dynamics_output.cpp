@@ -34,7 +34,7 @@ TEST(DynamicsOutput, CsvRowsAndPvdOverFrequency) {
   for (double f : {1.0, 2.0}) {
     const auto r = s.solve(f, displacement_amplitude(250.0, AccelerationReading::peak_to_peak, f));
     rows.push_back(make_row(r, Measure::indenter_held, g));
-    write_frequency_frame(series, mesh, r);
+    write_frequency_frame(series, mesh, sys, sys.element_base(), r, 2);
   }
   // Quasi-static limit: K = M_c A / L = 0.05 * 100 / 20 N/mm, E = K L / A = 0.05 MPa = 50 kPa.
   EXPECT_NEAR(std::abs(rows[0].stiffness), 0.25, 0.25 * 1e-3);
