@@ -1,5 +1,6 @@
 #include "calibration/compare_output.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -56,18 +57,24 @@ Presentation presentation(const TestCompare& t) {
            "model_phase_deg", "residual_phase_deg", "noise_modulus_kPa", "noise_phase_deg"}};
 }
 
-/// Two-panel gnuplot script: curves on top, residuals with the noise band below.
+/// Two-panel gnuplot script: curves on top, residuals with the noise band below; keys right of the panels, the
+/// x range that of the data.
 std::string two_panel_script(const TestCompare& t, const std::string& csv, const std::string& png) {
   std::ostringstream g;
   const Presentation p = presentation(t);
   const std::string a = p.y_label.substr(0, p.y_label.find(' '));  // "|E*|" or "|K*|"
   g << "# " << t.name << ": model vs measurement (top) and residual model - measured (bottom); data in " << csv << "\n";
-  g << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n  set terminal pngcairo size 900,800 enhanced font 'sans,11'\n"
-    << "} else {\n  set terminal png size 900,800\n}\n";
-  g << "set output '" << png << "'\nset datafile separator comma\nset grid\nset key top left\n";
-  g << "set multiplot layout 2,1 title '" << t.name << " (" << t.use << "): error " << fixed(t.noise_ratio(), 2)
-    << " x noise' noenhanced\n";
-  g << "set lmargin 12\nset rmargin 12\n";
+  g << "reset\nif (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n  set terminal pngcairo size 1200,800 enhanced font 'sans,11'\n"
+    << "} else {\n  set terminal png size 1200,800\n}\n";
+  g << "set output '" << png << "'\nset datafile separator comma\nset grid\n"
+    << "set key outside right top vertical Left reverse noenhanced\nset lmargin 12\n";
+  const bool log_x = !t.is_curve();
+  g << "set rmargin " << (log_x ? 50 : 24) << "\n";  // the key, and on spectra the phase axis
+  if (log_x) g << "set logscale x\n";
+  if (!t.x.empty()) g << gnuplot_xrange(*std::min_element(t.x.begin(), t.x.end()), *std::max_element(t.x.begin(), t.x.end()), log_x);
+  g << "set multiplot layout 2,1 title " << gnuplot_literal(t.name + " (" + t.use + "): model vs measurement, error " +
+                                                             fixed(t.noise_ratio(), 2) + " x noise")
+    << " noenhanced\n";
   if (t.is_curve()) {
     g << "set xlabel '" << p.x_label << "'\nset ylabel '" << p.y_label << "'\n";
     g << "plot '" << csv << "' skip 1 using 1:2 with points pt 7 ps 0.4 title 'measured', \\\n"
@@ -77,18 +84,18 @@ std::string two_panel_script(const TestCompare& t, const std::string& csv, const
       << "     '' skip 1 using 1:5 with lines dt 2 lc rgb 'gray40' title '+-1 noise', \\\n"
       << "     '' skip 1 using 1:(-$5) with lines dt 2 lc rgb 'gray40' notitle\n";
   } else {
-    g << "set logscale x\nset xlabel '" << p.x_label << "'\nset ylabel '" << p.y_label << "' noenhanced\nset y2label 'phase [deg]'\n"
+    g << "set xlabel '" << p.x_label << "'\nset ylabel '" << p.y_label << "' noenhanced\nset y2label 'phase [deg]'\n"
       << "set ytics nomirror\nset y2tics\n";
     g << "plot '" << csv << "' skip 1 using 1:2 with points pt 7 title '" << a << " measured' noenhanced, \\\n"
       << "     '' skip 1 using 1:3 with lines lw 2 title '" << a << " model' noenhanced, \\\n"
-      << "     '' skip 1 using 1:5 axes x1y2 with points pt 6 title 'phase measured', \\\n"
-      << "     '' skip 1 using 1:6 axes x1y2 with lines lw 2 dt 3 title 'phase model'\n";
+      << "     '' skip 1 using 1:5 axes x1y2 with points pt 6 title 'phase measured (right axis)', \\\n"
+      << "     '' skip 1 using 1:6 axes x1y2 with lines lw 2 dt 3 title 'phase model (right axis)'\n";
     g << "set ylabel 'residual " << p.y_label << "' noenhanced\nset y2label 'residual phase [deg]'\n";
     g << "plot '" << csv << "' skip 1 using 1:4 with linespoints pt 7 title '" << a << " model - measured' noenhanced, \\\n"
       << "     '' skip 1 using 1:8 with lines dt 2 lc rgb 'gray40' title '+-1 noise " << a << "' noenhanced, \\\n"
       << "     '' skip 1 using 1:(-$8) with lines dt 2 lc rgb 'gray40' notitle, \\\n"
-      << "     '' skip 1 using 1:7 axes x1y2 with linespoints pt 6 title 'phase model - measured', \\\n"
-      << "     '' skip 1 using 1:9 axes x1y2 with lines dt 3 lc rgb 'gray70' title '+-1 noise phase', \\\n"
+      << "     '' skip 1 using 1:7 axes x1y2 with linespoints pt 6 title 'phase model - measured (right axis)', \\\n"
+      << "     '' skip 1 using 1:9 axes x1y2 with lines dt 3 lc rgb 'gray70' title '+-1 noise phase (right axis)', \\\n"
       << "     '' skip 1 using 1:(-$9) axes x1y2 with lines dt 3 lc rgb 'gray70' notitle\n";
   }
   g << "unset multiplot\n";

@@ -43,6 +43,50 @@ std::vector<double> phase(const DynamicModuli& d) {
   return p;
 }
 
+/// One colour per test: test points, the paper's material dashed, the refit solid.
+Plot quasi_static_overview(const FitResult& R) {
+  Plot p{"model_vs_test_quasi_static",
+         "Quasi-static tests (points) vs the solver's model: paper's material (dashed), refit (solid)",
+         "nominal strain [-]", "nominal stress [kPa]", "", "strain", "stress_kPa", {}};
+  int colour = 0;
+  for (const auto& c : R.comparisons) {
+    // Either prediction may have failed (reported n/a): the test from whichever ran.
+    const auto& any = c.quasi_static_paper ? c.quasi_static_paper : c.quasi_static_refit;
+    if (!any) continue;
+    p.series.push_back({c.name + ": test", any->strain, kpa(any->measured), true, false, colour});
+    if (c.quasi_static_paper)
+      p.series.push_back({c.name + ": paper's material", c.quasi_static_paper->strain, kpa(c.quasi_static_paper->model),
+                          false, false, colour, 2});
+    if (c.quasi_static_refit)
+      p.series.push_back({c.name + ": refit", c.quasi_static_refit->strain, kpa(c.quasi_static_refit->model), false,
+                          false, colour, 1});
+    ++colour;
+  }
+  return p;
+}
+
+/// |E*| (upper panel) and phase (lower panel) of every dynamic test against the model, one colour per test.
+Plot dynamic_overview(const FitResult& R) {
+  Plot p{"model_vs_test_dynamic",
+         "Dynamic tests (points) vs the solver's model at each preload: paper's material (dashed), refit (solid)",
+         "frequency [Hz]", "dynamic modulus |E*| [kPa]", "phase [deg]", "frequency_Hz", "modulus_kPa_or_phase_deg", {}};
+  p.two_panels = true;
+  int colour = 0;
+  for (const auto& c : R.comparisons) {
+    const auto& any = c.dynamic_paper ? c.dynamic_paper : c.dynamic_refit;
+    if (!any) continue;
+    const auto add = [&](const std::string& what, const DynamicModuli& d, bool points, int dash) {
+      p.series.push_back({c.name + ": " + what + " |E*|", d.frequency, magnitude(d), points, false, colour, dash});
+      p.series.push_back({c.name + ": " + what + " phase", d.frequency, phase(d), points, true, colour, dash});
+    };
+    add("test", any->measured, true, 1);
+    if (c.dynamic_paper) add("paper's material", c.dynamic_paper->model, false, 2);
+    if (c.dynamic_refit) add("refit", c.dynamic_refit->model, false, 1);
+    ++colour;
+  }
+  return p;
+}
+
 }  // namespace
 
 std::vector<Plot> fit_plots(const FitResult& R, const Campaign& campaign) {
@@ -50,8 +94,9 @@ std::vector<Plot> fit_plots(const FitResult& R, const Campaign& campaign) {
   const QuasiStaticTest& qs = *campaign.quasi_static_calibration();
   const DynamicTest& dyn = *campaign.dynamic_calibration();
   {  // Fig. 8
-    Plot p{"fig8_decomposition", "Decomposition of " + qs.name + " (paper Fig. 8)", "nominal strain [-]",
-           "nominal stress [kPa]", "", "strain", "stress_kPa", {}};
+    Plot p{"fig8_decomposition",
+           "Decomposition of " + qs.name + ": test = viscous + elastic part; hyperfoam fitted to the elastic part (paper Fig. 8)",
+           "nominal strain [-]", "nominal stress [kPa]", "", "strain", "stress_kPa", {}};
     const Decomposition& d = R.decomposition;
     p.series.push_back({"test sigma", d.strain, kpa(d.sigma), true});
     p.series.push_back({"viscous sigma_v (hereditary fit)", d.strain, kpa(d.sigma_v)});
@@ -63,58 +108,33 @@ std::vector<Plot> fit_plots(const FitResult& R, const Campaign& campaign) {
     plots.push_back(p);
   }
   {  // Fig. 7
-    Plot p{"fig7_difference_stress", "Difference stress sigma(t1) - sigma(t2) of " + qs.name + " (paper Fig. 7)",
+    Plot p{"fig7_difference_stress",
+           "Difference stress sigma(t1) - sigma(t2) of " + qs.name + ": test vs hereditary model (paper Fig. 7)",
            "loading time t1 [s]", "difference stress [kPa]", "", "t1_s", "delta_sigma_kPa", {}};
     p.series.push_back({"test", R.pairs.t1, kpa(R.hereditary.measured), true});
     p.series.push_back({"hereditary model (fit)", R.pairs.t1, kpa(R.hereditary.model)});
     plots.push_back(p);
   }
   {  // Fig. 4
-    Plot p{"fig4_dynamic", "Dynamic modulus and phase of " + dyn.name + " (paper Fig. 4)", "frequency [Hz]",
-           "dynamic modulus |E*| [kPa]", "phase [deg]", "frequency_Hz", "value_kPa_or_deg", {}};
+    Plot p{"fig4_dynamic", "|E*| (left axis) and phase (right axis) of " + dyn.name + ": test vs Prony fit (paper Fig. 4)",
+           "frequency [Hz]", "dynamic modulus |E*| [kPa]", "phase [deg]", "frequency_Hz", "value_kPa_or_deg", {}};
     const DynamicModuli fit = prony_moduli(R.prony.E_inf, R.prony.E, R.prony.tau, dyn.moduli.frequency);
-    p.series.push_back({"|E*| test", dyn.moduli.frequency, magnitude(dyn.moduli), true});
-    p.series.push_back({"|E*| Prony fit", fit.frequency, magnitude(fit)});
-    p.series.push_back({"phase test", dyn.moduli.frequency, phase(dyn.moduli), true, true});
-    p.series.push_back({"phase Prony fit", fit.frequency, phase(fit), false, true});
+    p.series.push_back({"|E*| test", dyn.moduli.frequency, magnitude(dyn.moduli), true, false, 0});
+    p.series.push_back({"|E*| Prony fit", fit.frequency, magnitude(fit), false, false, 0});
+    p.series.push_back({"phase test", dyn.moduli.frequency, phase(dyn.moduli), true, true, 1});
+    p.series.push_back({"phase Prony fit", fit.frequency, phase(fit), false, true, 1, 2});
     plots.push_back(p);
   }
   {  // Table 2 on the paper's protocol
-    Plot p{"table2_protocol", "Hereditary viscous stress on the paper's protocol (120 mm/min to 75 %, 2 s hold)",
+    Plot p{"table2_protocol",
+           "Viscous stress on the paper's protocol (120 mm/min to 75 %, 2 s hold): paper Table 2 modes vs this fit's modes",
            "time [s]", "viscous stress sigma_v [kPa]", "", "time_s", "sigma_v_kPa", {}};
     p.series.push_back({"paper Table 2", R.table2_curve.history.time, kpa(R.table2_curve.sigma_v)});
-    p.series.push_back({"this fit", R.fitted_curve.history.time, kpa(R.fitted_curve.sigma_v)});
+    p.series.push_back({"this fit", R.fitted_curve.history.time, kpa(R.fitted_curve.sigma_v), false, false, -1, 2});
     plots.push_back(p);
   }
-  {  // model vs test, quasi-static
-    Plot p{"model_vs_test_quasi_static", "Solver model vs every quasi-static test", "nominal strain [-]",
-           "nominal stress [kPa]", "", "strain", "stress_kPa", {}};
-    for (const auto& c : R.comparisons) {
-      // Either prediction may have failed (reported n/a): the test from whichever ran.
-      const auto& any = c.quasi_static_paper ? c.quasi_static_paper : c.quasi_static_refit;
-      if (!any) continue;
-      p.series.push_back({c.name + " test", any->strain, kpa(any->measured), true});
-      if (c.quasi_static_paper)
-        p.series.push_back({c.name + " paper", c.quasi_static_paper->strain, kpa(c.quasi_static_paper->model)});
-      if (c.quasi_static_refit)
-        p.series.push_back({c.name + " refit", c.quasi_static_refit->strain, kpa(c.quasi_static_refit->model)});
-    }
-    plots.push_back(p);
-  }
-  {  // model vs test, dynamic
-    Plot p{"model_vs_test_dynamic", "Solver model vs every dynamic test (complex tangent at the preload)",
-           "frequency [Hz]", "dynamic modulus |E*| [kPa]", "", "frequency_Hz", "modulus_kPa", {}};
-    for (const auto& c : R.comparisons) {
-      const auto& any = c.dynamic_paper ? c.dynamic_paper : c.dynamic_refit;
-      if (!any) continue;
-      p.series.push_back({c.name + " test", any->measured.frequency, magnitude(any->measured), true});
-      if (c.dynamic_paper)
-        p.series.push_back({c.name + " paper", c.dynamic_paper->model.frequency, magnitude(c.dynamic_paper->model)});
-      if (c.dynamic_refit)
-        p.series.push_back({c.name + " refit", c.dynamic_refit->model.frequency, magnitude(c.dynamic_refit->model)});
-    }
-    plots.push_back(p);
-  }
+  plots.push_back(quasi_static_overview(R));
+  plots.push_back(dynamic_overview(R));
   return plots;
 }
 

@@ -8,6 +8,7 @@
 #include "calibration/prony_fit.hpp"
 #include "material/hyperfoam.hpp"
 #include "io/input_error.hpp"
+#include "io/text_support.hpp"
 
 namespace cushion::calibration {
 
@@ -82,7 +83,7 @@ void segment_and_pair(const CalibrationTests& c, FitResult& R, std::ostream& log
     R.pairs = pair_loading_unloading(qs.record, R.segments, R.pair_interval);
   }
   if (R.pair_interval < 1.0)
-    warn(R, "only a short unloading branch: difference stress paired every " + std::to_string(R.pair_interval) +
+    warn(R, "only a short unloading branch: difference stress paired every " + io::format_with("%g", R.pair_interval) +
                 " s instead of 1 s", log);
   log << "fit: [1-2] " << qs.name << ": loading " << R.segments.load_end - R.segments.load_begin + 1
       << " samples to " << percent(R.segments.peak_strain) << ", hold " << R.segments.hold_duration << " s, "

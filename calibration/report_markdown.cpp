@@ -52,7 +52,8 @@ void header_section(std::ostringstream& o, const FitResult& R, const Campaign& c
 void segments_section(std::ostringstream& o, const FitResult& R) {
   o << "## 1-2. Segments and difference stress\n\n";
   o << "Peak strain " << pct(R.segments.peak_strain) << ", peak stress " << num(R.segments.peak_stress * 1e3) << " kPa, hold "
-    << num(R.segments.hold_duration) << " s, " << R.pairs.t1.size() << " loading/unloading pairs at 1 s intervals"
+    << num(R.segments.hold_duration) << " s, " << R.pairs.t1.size() << " loading/unloading pairs every " << num(R.pair_interval) << " s"
+    << (R.pair_interval < 1.0 ? " (the paper's 1 s interval halved until the short unloading branch gave enough pairs)" : "")
     << (R.segments.lift_off ? ", unloading truncated at lift-off (strain " + num(R.segments.lift_off_strain) + ")" : "")
     << ".\n";
   for (const auto& w : R.segments.warnings) o << "\n- warning: " << w << "\n";

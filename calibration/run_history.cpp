@@ -20,6 +20,43 @@ std::string clean(std::string s) {
     if (c == ',' || c == '\n' || c == '\r') c = ' ';
   return s;
 }
+
+std::string fixed_text(double v) {
+  std::ostringstream o;
+  o << v;
+  return o.str();
+}
+
+/// Error/noise per test (lines with markers) against the run, tics labelled with each run's label; the
+/// noise level (1) and the "at noise level" limit of compare/diagnose as dashed lines over a shaded band.
+Plot history_plot(const std::vector<HistoryRow>& rows) {
+  Plot plot;
+  plot.name = "history_plot";
+  plot.title = "Model error per test across model versions (error/noise; lower is better, 1 = measurement noise)";
+  plot.xlabel = "model version (run number: label, as in history.csv)";
+  plot.ylabel = "RMS error / measurement noise [-]";
+  plot.x_column = "run";
+  plot.y_column = "error_over_noise";
+  std::map<std::string, std::size_t> index;
+  std::map<int, std::string> labels;
+  for (const auto& r : rows) {
+    if (!index.count(r.test)) {
+      index[r.test] = plot.series.size();
+      plot.series.push_back({r.test, {}, {}});
+      plot.series.back().markers = true;
+    }
+    plot.series[index[r.test]].x.push_back(r.run);
+    plot.series[index[r.test]].y.push_back(r.error_over_noise);
+    labels[r.run] = r.label;
+  }
+  for (const auto& [run, label] : labels) plot.xtics.push_back({run, std::to_string(run) + ": " + label});
+  const double at_noise = CompareOptions().noise_level_ratio;
+  plot.bands.push_back({0.0, at_noise, "#e3f2e3", "at the noise level (error/noise <= " + fixed_text(at_noise) + ")"});
+  plot.levels.push_back({1.0, "error = noise"});
+  plot.levels.push_back({at_noise, "error = " + fixed_text(at_noise) + " x noise"});
+  return plot;
+}
+
 }  // namespace
 
 std::vector<HistoryRow> read_history(const fs::path& dir) {
@@ -69,23 +106,7 @@ int append_history(const fs::path& dir, const std::string& label, const CompareR
     }
     if (!out) throw std::runtime_error((dir / "history.csv").string() + ": cannot write");
   }
-  Plot plot;
-  plot.name = "history_plot";
-  plot.title = "error per test across model versions (runs: see history.csv labels)";
-  plot.xlabel = "run";
-  plot.ylabel = "RMS error / measurement noise [-] (1 = noise level)";
-  plot.x_column = "run";
-  plot.y_column = "error_over_noise";
-  std::map<std::string, std::size_t> index;
-  for (const auto& r : rows) {
-    if (!index.count(r.test)) {
-      index[r.test] = plot.series.size();
-      plot.series.push_back({r.test, {}, {}, false, false});
-    }
-    plot.series[index[r.test]].x.push_back(r.run);
-    plot.series[index[r.test]].y.push_back(r.error_over_noise);
-  }
-  std::vector<PlotFiles> files{write_plot(plot, dir)};
+  std::vector<PlotFiles> files{write_plot(history_plot(rows), dir)};
   draw_plots(files, dir, gnuplot);
   return run;
 }

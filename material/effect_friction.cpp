@@ -47,8 +47,8 @@ Mat6c FrictionEffect::complex_tangent(const Mat3& F_base, double omega) const {
 
 std::string FrictionEffect::describe() const {
   std::ostringstream o;
-  o << "friction branch (k = " << p_.stiffness << " MPa, s_y = " << p_.yield_stress << " MPa, h = " << p_.hardening
-    << " MPa) over " << inner_->describe();
+  o << "friction branch (k = " << p_.stiffness * 1e3 << " kPa, s_y = " << p_.yield_stress * 1e3 << " kPa, h = "
+    << p_.hardening * 1e3 << " kPa) over " << inner_->describe();
   return o.str();
 }
 

@@ -55,7 +55,7 @@ Mat6c MullinsEffect::complex_tangent(const Mat3& F_base, double omega) const {
 
 std::string MullinsEffect::describe() const {
   std::ostringstream o;
-  o << "Mullins softening (r = " << p_.r << ", m = " << p_.m << " MPa, beta = " << p_.beta << ") over "
+  o << "Mullins softening (r = " << p_.r << ", m = " << p_.m * 1e3 << " kPa, beta = " << p_.beta << ") over "
     << inner_->describe();
   return o.str();
 }

@@ -52,7 +52,7 @@ Mat6c PneumaticEffect::complex_tangent(const Mat3& F_base, double omega) const {
 std::string PneumaticEffect::describe() const {
   std::ostringstream o;
   o << "pneumatic damping (R = " << p_.drainage_length << " mm, K0 = " << p_.permeability << " mm^2, n_K = "
-    << p_.permeability_exponent << ", eta_air = " << p_.air_viscosity << " MPa s) over " << inner_->describe();
+    << p_.permeability_exponent << ", eta_air = " << p_.air_viscosity * 1e6 << " Pa s) over " << inner_->describe();
   return o.str();
 }
 

@@ -149,7 +149,7 @@ std::string Hyperfoam::describe() const {
   std::ostringstream o;
   o << "hyperfoam N=" << terms_.size() << ":";
   for (const HyperfoamTerm& t : terms_)
-    o << " (mu=" << t.mu << " MPa, alpha=" << t.alpha << ", nu=" << t.nu << ")";
+    o << " (mu=" << t.mu * 1e3 << " kPa, alpha=" << t.alpha << ", nu=" << t.nu << ")";
   return o.str();
 }
 

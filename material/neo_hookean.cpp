@@ -57,7 +57,7 @@ std::shared_ptr<const Hyperelastic> NeoHookean::scaled(double factor) const {
 
 std::string NeoHookean::describe() const {
   std::ostringstream s;
-  s << "neo-Hookean: mu = " << mu_ << " MPa, lambda = " << lambda_ << " MPa";
+  s << "neo-Hookean: mu = " << mu_ * 1e3 << " kPa, lambda = " << lambda_ * 1e3 << " kPa";
   return s.str();
 }
 

@@ -141,3 +141,36 @@ TEST(Plot, WritesCsvAndScriptAndDrawsWhenGnuplotIsPresent) {
   EXPECT_FALSE(files[0].drawn);
   EXPECT_NE(files[0].message.find("gnuplot not found"), std::string::npos);
 }
+
+TEST(Plot, ScriptResetsStateAndHasARightAxisOnlyWhenASeriesUsesIt) {
+  cal::Plot p{"line", "a: line", "x [-]", "y [-]", "phase [deg]", "x", "y", {}};
+  p.series.push_back({"data", {1.0, 2.0}, {1.0, 4.0}, true});
+  const std::string plain = cal::plot_script(p, "line.csv", "line.png");
+  EXPECT_NE(plain.find("\nreset\n"), std::string::npos) << plain;
+  EXPECT_EQ(plain.find("y2"), std::string::npos) << plain;  // y2label given but no series on it
+  p.series.push_back({"phase", {1.0, 2.0}, {10.0, 12.0}, false, true});
+  const std::string right = cal::plot_script(p, "line.csv", "line.png");
+  EXPECT_NE(right.find("set y2tics"), std::string::npos) << right;
+  EXPECT_NE(right.find("axes x1y2"), std::string::npos) << right;
+  p.two_panels = true;  // the y2 series go to a lower panel with their own y axis
+  const std::string panels = cal::plot_script(p, "line.csv", "line.png");
+  EXPECT_EQ(panels.find("y2"), std::string::npos) << panels;
+  EXPECT_NE(panels.find("set multiplot layout 2,1"), std::string::npos) << panels;
+  EXPECT_NE(panels.find("set ylabel 'phase [deg]'"), std::string::npos) << panels;
+}
+
+TEST(Plot, RangeFromTheDataAndLabelledIntegerTics) {
+  cal::Plot p{"spectrum", "s", "f [Hz]", "E [kPa]", "", "f", "E", {}};
+  p.series.push_back({"test", {1.0, 20.0}, {40.0, 70.0}, true});
+  p.log_x = true;
+  const std::string log = cal::plot_script(p, "s.csv", "s.png");
+  EXPECT_NE(log.find("set logscale x"), std::string::npos);
+  EXPECT_NE(log.find("set xrange [0.9259259259:21.6]"), std::string::npos) << log;  // 8 % beyond the data
+  p.log_x = false;
+  p.xtics = {{1.0, "1: baseline"}, {2.0, "2: +friction"}};
+  p.levels = {{1.0, "noise"}};
+  const std::string tics = cal::plot_script(p, "s.csv", "s.png");
+  EXPECT_NE(tics.find("set xtics ('1: baseline' 1, '2: +friction' 2)"), std::string::npos) << tics;
+  EXPECT_NE(tics.find("set xrange [0.5:2.5]"), std::string::npos) << tics;
+  EXPECT_NE(tics.find("set arrow from graph 0, first 1 to graph 1, first 1 nohead"), std::string::npos) << tics;
+}

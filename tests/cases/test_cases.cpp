@@ -28,7 +28,8 @@
 //                        tests/tools/test_cli_compare.cpp;
 //   materials/           material files only (used by the cases here);
 //   the scripts (sitbar_quasistatic/plot.sh, mesh_convergence.sh, sitbar_sweep/run.sh, and the CalculiX side of
-//   calculix_check, tools/calculix_indentation.sh) are not run here.
+//   calculix_check, tools/calculix_indentation.sh) are not run here; sitbar_sweep/run.sh runs, as the README prints
+//   it, in the ctest Readme.CommandsRunAsPrinted (label readme).
 // ShippedCases.EveryCaseFileIsCovered fails when a case file is added to cases/ without a test here.
 #include <gtest/gtest.h>
 

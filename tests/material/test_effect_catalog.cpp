@@ -112,6 +112,19 @@ TEST(EffectCatalog, FileUnitsAreConverted) {
   EXPECT_EQ(apply_effects(foam, foam, {}), foam);  // no effects: the base model itself
 }
 
+TEST(EffectCatalog, DescriptionsUseTheFileUnits) {
+  // describe() is printed to the user (cushion point): kPa and Pa s as in the material file, never MPa.
+  const auto foam = test::effect_test_foam();
+  const auto m = apply_effects(foam, foam, {{"friction", {{"stiffness_kPa", 12.0}, {"yield_stress_kPa", 0.3}}},
+                                            {"mullins", {{"m_kPa", 0.5}}}, {"pneumatic", {}}});
+  const std::string d = m->describe();
+  EXPECT_EQ(d.find("MPa"), std::string::npos) << d;
+  EXPECT_NE(d.find("k = 12 kPa, s_y = 0.3 kPa"), std::string::npos) << d;
+  EXPECT_NE(d.find("m = 0.5 kPa"), std::string::npos) << d;
+  EXPECT_NE(d.find("eta_air = 1.8e-05 Pa s"), std::string::npos) << d;
+  EXPECT_NE(d.find(" kPa, alpha="), std::string::npos) << d;  // the hyperfoam base
+}
+
 TEST(EffectCatalog, EffectsWrapInListOrder) {
   // The first listed effect is innermost.
   const auto foam = test::effect_test_foam();

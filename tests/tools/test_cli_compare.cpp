@@ -25,6 +25,13 @@ fs::path hidden() { return fs::path(CUSHION_SOURCE_DIR) / "cases" / "hidden_effe
 /// One folder per process: ctest runs the tests of this file as parallel processes.
 fs::path scratch() { return fs::temp_directory_path() / ("cushion_test_cli_compare_" + std::to_string(::getpid())); }
 
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
 std::size_t count_lines(const fs::path& p) {
   std::ifstream in(p);
   std::size_t n = 0;
@@ -54,7 +61,22 @@ TEST(CliCompare, WritesReportAndAppendsHistory) {
   ASSERT_EQ(b.exit_code, 0) << b.output;
   EXPECT_NE(b.output.find("every test is at the noise level"), std::string::npos) << b.output;
   EXPECT_EQ(count_lines(scratch() / "history" / "history.csv"), 1u + 2u * 5u);  // header + 2 runs x 5 tests
-  EXPECT_TRUE(fs::exists(scratch() / "history" / "history_plot.gp"));
+  // History plot: integer tics labelled with the run labels, markers, the noise level and the 1.5 x noise limit.
+  const std::string history = read_text(scratch() / "history" / "history_plot.gp");
+  EXPECT_NE(history.find("set xtics ('1: baseline' 1, '2: with_friction' 2)"), std::string::npos) << history;
+  EXPECT_NE(history.find("with linespoints"), std::string::npos) << history;
+  EXPECT_NE(history.find("first 1 to graph 1, first 1 nohead"), std::string::npos) << history;
+  EXPECT_NE(history.find("first 1.5 to graph 1, first 1.5 nohead"), std::string::npos) << history;
+  EXPECT_NE(history.find("set object 1 rect from graph 0, first 0 to graph 1, first 1.5"), std::string::npos) << history;
+  // Spectrum plot: x range that of the data (1-20 Hz), not gnuplot's next decade; keys outside the plot area.
+  const std::string dyn = read_text(scratch() / "c1" / "compare_dyn_40.gp");
+  EXPECT_NE(dyn.find("\nreset\n"), std::string::npos) << dyn;
+  EXPECT_NE(dyn.find("set key outside"), std::string::npos) << dyn;
+  const std::size_t range = dyn.find("set xrange [");
+  ASSERT_NE(range, std::string::npos) << dyn;
+  const double upper = std::stod(dyn.substr(dyn.find(':', range) + 1));
+  EXPECT_GT(upper, 20.0);
+  EXPECT_LT(upper, 25.0) << dyn;
 }
 
 TEST(CliCompare, BadMaterialIsAnInputError) {

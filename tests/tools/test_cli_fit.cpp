@@ -129,6 +129,29 @@ TEST_F(CliFit, WritesEveryOutputAndAReadableMaterial) {
   EXPECT_EQ(def.spec.hyperfoam[0].mu, same.spec.hyperfoam[0].mu);
   EXPECT_EQ(json["tests"].size(), 2u);
   EXPECT_NE(read(out / "abaqus_refit.inp").find("*HYPERFOAM, N=3, MODULI=LONG TERM"), std::string::npos);
+  // Console and report.md give the same pairing interval.
+  const auto interval = [](const std::string& text) {
+    const std::size_t at = text.find("pairs every ");
+    return at == std::string::npos ? std::string("none") : text.substr(at, text.find(" s", at + 12) - at);
+  };
+  EXPECT_NE(interval(r.output), "none") << r.output;
+  EXPECT_EQ(interval(r.output), interval(read(out / "report.md")));
+  // Plots: each script resets gnuplot's state (one process draws them all); a right axis only where a series uses it.
+  for (const char* plot : {"fig8_decomposition", "fig7_difference_stress", "fig4_dynamic", "table2_protocol",
+                           "model_vs_test_quasi_static", "model_vs_test_dynamic"}) {
+    const std::string gp = read(out / (std::string(plot) + ".gp"));
+    EXPECT_NE(gp.find("\nreset\n"), std::string::npos) << plot;
+    const bool right_axis = std::string(plot) == "fig4_dynamic";
+    EXPECT_EQ(gp.find("y2") != std::string::npos, right_axis) << plot << "\n" << gp;
+    EXPECT_TRUE(fs::exists(out / (std::string(plot) + ".csv"))) << plot;
+  }
+  const std::string dynamic = read(out / "model_vs_test_dynamic.gp");
+  EXPECT_NE(dynamic.find("set multiplot layout 2,1"), std::string::npos) << dynamic;
+  EXPECT_NE(dynamic.find("set ylabel 'phase [deg]'"), std::string::npos) << dynamic;
+  EXPECT_NE(dynamic.find("dyn: test phase"), std::string::npos) << dynamic;
+  const std::string qs = read(out / "model_vs_test_quasi_static.gp");
+  EXPECT_NE(qs.find("dashtype 2"), std::string::npos) << qs;  // the paper's material dashed, the refit solid
+  EXPECT_NE(qs.find("key outside"), std::string::npos) << qs;
   // A second run replaces an earlier fit output with --overwrite only; without it, the folder is refused
   // before the fit runs and stays as it was.
   const auto before = cli_test::listing(out);
