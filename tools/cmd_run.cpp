@@ -19,6 +19,7 @@ struct RunCommandOptions {
 
 void run_command(const RunCommandOptions& o) {
   const solver::LoadedCase loaded = solver::load_case(o.case_file);
+  for (const std::string& warning : loaded.warnings) std::cerr << "cushion: warning: " << warning << "\n";
   solver::RunOptions options;
   options.output_dir = o.output_dir;
   options.threads = o.threads;
