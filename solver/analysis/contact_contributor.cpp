@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "io/input_error.hpp"
 #include "io/text_support.hpp"
@@ -21,11 +22,54 @@ const std::vector<int>& node_set(const AnalysisContext& ctx, const ContactSpec& 
   return it->second;
 }
 
-ContactSet build_set(const ContactSpec& spec, const AnalysisContext& ctx) {
+void warn(AnalysisContext& ctx, const std::string& note) {
+  ctx.log() << "  warning: " << note << "\n";
+  ctx.report_progress("warning: " + note);
+}
+
+// The plane x[axis] = c if every node of `nodes` lies on it (within `tolerance` [mm]).
+std::optional<AxisPlane> common_plane(const mesh::Mesh& mesh, const std::vector<int>& nodes, int axis,
+                                      double tolerance) {
+  if (nodes.empty()) return std::nullopt;
+  const double c = mesh.nodes[nodes.front()][axis];
+  for (int n : nodes)
+    if (std::abs(mesh.nodes[n][axis] - c) > tolerance) return std::nullopt;
+  return AxisPlane{axis, c};
+}
+
+// Planes of the model where a boundary condition of any step holds the normal displacement of a set
+// lying in it (symmetry conditions apart from fixed or zero-displacement ones). Tolerance: 1e-6 of
+// the mesh's bounding-box diagonal.
+HeldPlanes held_planes(const CaseSpec& spec, const mesh::Mesh& mesh) {
+  HeldPlanes out;
+  mesh::Vec3 lo = mesh.nodes.front(), hi = lo;
+  for (const mesh::Vec3& x : mesh.nodes) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+  out.tolerance = 1e-6 * (hi - lo).norm();
+  auto add = [&](std::vector<AxisPlane>& planes, const AxisPlane& p) {
+    for (const AxisPlane& q : planes)
+      if (q.axis == p.axis && std::abs(q.offset - p.offset) <= out.tolerance) return;
+    planes.push_back(p);
+  };
+  for (const StepSpec& step : spec.steps)
+    for (const BoundarySpec& bc : step.boundary) {
+      const auto set = mesh.node_sets.find(bc.set);
+      const bool zero = bc.kind != BoundarySpec::Kind::displacement || (bc.value == 0.0 && !bc.amplitude);
+      if (set == mesh.node_sets.end() || !zero) continue;
+      for (int axis = 0; axis < 3; ++axis)
+        if (bc.dofs[axis])
+          if (const auto plane = common_plane(mesh, set->second, axis, out.tolerance))
+            add(bc.kind == BoundarySpec::Kind::symmetry ? out.symmetry : out.held, *plane);
+    }
+  return out;
+}
+
+ContactSet build_set(const ContactSpec& spec, AnalysisContext& ctx) {
   const std::string where = ctx.spec().file.string() + ": " + spec.key;
   try {
-    return ContactSet(spec.name, ctx.mesh(), node_set(ctx, spec), make_indenter(spec.indenter, where + ".indenter"),
-                      spec.parameters);
+    std::vector<std::string> notes;
+    auto surface = make_indenter(spec.indenter, where + ".indenter", held_planes(ctx.spec(), ctx.mesh()), &notes);
+    for (const std::string& note : notes) warn(ctx, note);
+    return ContactSet(spec.name, ctx.mesh(), node_set(ctx, spec), std::move(surface), spec.parameters);
   } catch (const InputError& e) {
     const std::string what = e.what();
     throw InputError(what.rfind(where, 0) == 0 ? what : where + ": " + what);
@@ -122,10 +166,7 @@ void ContactContributor::commit() {
     note = "contact '" + set_.name() + "': no node of set '" + step_spec_.set + "' touched the indenter in step '" +
            step_->name + "' (smallest gap " + fmt("%.4g", t.min_gap) + " mm at the end); check its position and motion";
   }
-  if (!note.empty()) {
-    ctx_.log() << "  warning: " << note << "\n";
-    ctx_.report_progress("warning: " + note);
-  }
+  if (!note.empty()) warn(ctx_, note);
 }
 
 void ContactContributor::revert() { set_.revert(); }
