@@ -65,14 +65,14 @@ std::string quarter_case(const std::string& indenter, const std::string& sym_x_c
          indenter + R"(, "motion_mm": [0, 0, -15], "tolerance_mm": 0.01, "force_factor": 4}]}]})";
 }
 
-struct Run {
+struct Indentation {
   std::vector<double> depth, force;  ///< [mm], [N] (full model), one row per increment
   std::string progress;
   double force_at(double d) const { return test::interpolate(depth, force, d); }  ///< [N] at depth d [mm]
 };
 
-Run run(const fs::path& dir, const std::string& name, const std::string& text) {
-  const fs::path file = test::write_text(dir / (name + ".json"), text);
+Indentation run(const std::filesystem::path& dir, const std::string& name, const std::string& text) {
+  const std::filesystem::path file = test::write_text(dir / (name + ".json"), text);
   std::ostringstream progress;
   RunOptions options;
   options.output_dir = dir / name;
@@ -80,7 +80,7 @@ Run run(const fs::path& dir, const std::string& name, const std::string& text) {
   options.progress = &progress;
   run_analysis(load_case(file), options);
   const CsvTable t = read_csv(dir / name / "contact_ball.csv");
-  Run out;
+  Indentation out;
   for (double u : t.col("ball.U3_mm")) out.depth.push_back(-u);
   for (double f : t.col("ball.F3_N")) out.force.push_back(-f);
   out.progress = progress.str();
@@ -92,9 +92,9 @@ TEST(ContactStlSymmetry, QuarterStlMatchesAnalyticSphereWithSymmetryTrianglesDro
   test::write_text(dir / "foam.json", test::foam_json(0.0, false));
   test::write_text(dir / "quarter.stl", quarter_sphere_stl(50, 90, 90));
   const std::string symmetry = R"("type": "symmetry_x")";
-  const Run sphere =
+  const Indentation sphere =
       run(dir, "sphere", quarter_case(R"({"type": "sphere", "centre_mm": [0, 0, 90], "radius_mm": 50})", symmetry));
-  const Run stl = run(dir, "stl", quarter_case(R"({"type": "stl", "file": "quarter.stl"})", symmetry));
+  const Indentation stl = run(dir, "stl", quarter_case(R"({"type": "stl", "file": "quarter.stl"})", symmetry));
   for (double d : {5.0, 10.0, 15.0}) {
     std::printf("depth %4.1f mm: STL %.4f N, sphere %.4f N (%+.3f %%)\n", d, stl.force_at(d), sphere.force_at(d),
                 100 * (stl.force_at(d) / sphere.force_at(d) - 1));
@@ -113,7 +113,7 @@ TEST(ContactStlSymmetry, TrianglesInAHeldPlaneWithoutSymmetryAreWarned) {
   test::write_text(dir / "quarter.stl", quarter_sphere_stl(50, 90, 90));
   // x = 0 held by a zero displacement instead of a symmetry condition: the plane is not known to be
   // a symmetry plane, so its triangles stay, with a warning.
-  const Run stl = run(dir, "stl", quarter_case(R"({"type": "stl", "file": "quarter.stl"})",
+  const Indentation stl = run(dir, "stl", quarter_case(R"({"type": "stl", "file": "quarter.stl"})",
                                                R"("dof": "x", "value_mm": 0)"));
   EXPECT_NE(stl.progress.find("90 of 8190 triangles of " + (dir / "quarter.stl").string() +
                               " lie in the symmetry planes y = 0 mm and were dropped"),
