@@ -126,15 +126,15 @@ class Reader {
     static const std::map<std::string, Handler> handlers = {
         {"NODE", &Reader::node},  {"ELEMENT", &Reader::element}, {"NSET", &Reader::nset},
         {"ELSET", &Reader::elset}, {"SURFACE", &Reader::surface}};
+    std::vector<const Block*> ignored;  // first block of each unused keyword, in deck order
+    std::map<std::string, int> ignored_count;
     for (const Block& block : deck) {
       const auto it = handlers.find(block.name);
-      if (it != handlers.end()) {
-        (this->*(it->second))(block);
-      } else if (notes_) {
-        notes_->push_back(block.keyword.file + ":" + std::to_string(block.keyword.number) + ": *" +
-                          block.name + " ignored (not a mesh keyword)");
-      }
+      if (it != handlers.end()) (this->*(it->second))(block);
+      else if (ignored_count[block.name]++ == 0) ignored.push_back(&block);
     }
+    if (notes_)
+      for (const Block* block : ignored) notes_->push_back(ignored_note(*block, ignored_count[block->name]));
     for (auto* sets : {&mesh_.node_sets, &mesh_.element_sets})
       for (auto& [name, members] : *sets) {
         std::sort(members.begin(), members.end());
@@ -144,6 +144,13 @@ class Reader {
   }
 
  private:
+  // "<file>:<line>: keyword *XYZ ignored (...)" for the first of `count` blocks of an unused keyword.
+  static std::string ignored_note(const Block& block, int count) {
+    return block.keyword.file + ":" + std::to_string(block.keyword.number) + ": keyword *" + block.name +
+           " ignored (" + (count > 1 ? std::to_string(count) + " times, the first here; " : "") +
+           "mesh import reads only *NODE, *ELEMENT, *NSET, *ELSET, *SURFACE, *INCLUDE)";
+  }
+
   // --- field conversion -----------------------------------------------------------------------
   static int integer(const Line& line, const std::string& keyword, const std::string& text) {
     std::size_t used = 0;

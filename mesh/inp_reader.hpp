@@ -3,8 +3,9 @@
 /// (TYPE=C3D8, C3D8R, C3D4, C3D10; ELSET=), *NSET / *ELSET (NSET= / ELSET=, GENERATE, members by
 /// label or set name, *NSET with ELSET= taking the nodes of an element set), *SURFACE (TYPE=ELEMENT,
 /// NAME=; lines "elset or label, Sn", Sn omitted = exterior faces of the set), *INCLUDE (INPUT=, path
-/// relative to the including file). Other keywords (*HEADING, *MATERIAL, *STEP ...) are skipped
-/// with a note. Coordinates are taken as mm. Node/element labels become 0-based indices.
+/// relative to the including file). Other keywords (*HEADING, *MATERIAL, *STEP ...) are skipped,
+/// each reported once (see read_inp). Coordinates are taken as mm. Node/element labels become
+/// 0-based indices. A deck that also meshes other parts (an indenter): mesh::element_set_part.
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -15,8 +16,10 @@ namespace cushion::mesh {
 
 /// Reads an .inp file. Errors throw cushion::InputError "file:line: *KEYWORD: message" (bad number,
 /// unknown element TYPE, undefined or duplicate label, bad GENERATE, empty set, unknown set ...).
-/// Notes on skipped keywords and reinterpreted element types go to `notes` if given. The element
-/// Jacobians are checked (check_elements).
+/// Warnings go to `notes` if given, one line each: reinterpreted element types, then every skipped
+/// keyword once, in deck order, as "<file>:<line>: keyword *XYZ ignored (mesh import reads only *NODE,
+/// ...)" with "N times, the first here; " inserted for a repeated keyword. The element Jacobians are
+/// checked (check_elements).
 Mesh read_inp(const std::string& path, std::vector<std::string>* notes = nullptr);
 
 /// Same as read_inp for deck text in memory; `name` is used in messages and *INCLUDE paths are

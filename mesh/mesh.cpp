@@ -2,13 +2,58 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cctype>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "io/input_error.hpp"
 #include "mesh/shape.hpp"
 
 namespace cushion::mesh {
+
+namespace {
+
+std::string upper(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return s;
+}
+
+std::string join(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& name : names) out += (out.empty() ? "" : ", ") + name;
+  return out.empty() ? "none" : out;
+}
+
+const std::vector<int>& find_element_set(const Mesh& mesh, const std::string& name) {
+  auto it = mesh.element_sets.find(name);
+  if (it == mesh.element_sets.end())
+    it = std::find_if(mesh.element_sets.begin(), mesh.element_sets.end(),
+                      [&](const auto& entry) { return upper(entry.first) == upper(name); });
+  if (it == mesh.element_sets.end()) {
+    std::vector<std::string> known;
+    for (const auto& entry : mesh.element_sets) known.push_back(entry.first);
+    throw InputError("no element set '" + name + "' (element sets: " + join(known) + ")");
+  }
+  return it->second;
+}
+
+// Members mapped by `map` (nullopt: outside the part), in order; names of sets left empty go to `dropped`.
+template <class Member, class Map>
+std::map<std::string, std::vector<Member>> kept(const std::map<std::string, std::vector<Member>>& sets, Map map,
+                                                 std::vector<std::string>& dropped) {
+  std::map<std::string, std::vector<Member>> out;
+  for (const auto& [name, members] : sets) {
+    std::vector<Member> inside;
+    for (const Member& m : members)
+      if (const auto mapped = map(m)) inside.push_back(*mapped);
+    if (inside.empty()) dropped.push_back(name);
+    else out[name] = std::move(inside);
+  }
+  return out;
+}
+
+}  // namespace
 
 int nodes_per_element(ElementType type) {
   switch (type) {
@@ -121,6 +166,44 @@ void check_elements(const Mesh& mesh, const std::string& where) {
       throw InputError(name + ": non-positive Jacobian det(dX/dxi) = " + std::to_string(detJ) +
                        " mm^3 at a corner (inverted, degenerate or wrongly ordered nodes)");
   }
+}
+
+Mesh element_set_part(const Mesh& mesh, const std::string& elset, std::vector<std::string>* notes) {
+  const std::vector<int>& chosen = find_element_set(mesh, elset);
+  std::vector<int> element_index(mesh.elements.size(), -1), node_index(mesh.nodes.size(), -1);
+  for (int e : chosen) {
+    element_index[e] = 0;
+    for (int a = 0; a < nodes_per_element(mesh.elements[e].type); ++a) node_index[mesh.elements[e].nodes[a]] = 0;
+  }
+  Mesh part;
+  for (std::size_t n = 0; n < mesh.nodes.size(); ++n)
+    if (node_index[n] == 0) {
+      node_index[n] = static_cast<int>(part.nodes.size());
+      part.nodes.push_back(mesh.nodes[n]);
+      part.node_labels.push_back(mesh.node_labels[n]);
+    }
+  for (std::size_t e = 0; e < mesh.elements.size(); ++e)
+    if (element_index[e] == 0) {
+      element_index[e] = static_cast<int>(part.elements.size());
+      Element element = mesh.elements[e];
+      for (int a = 0; a < nodes_per_element(element.type); ++a) element.nodes[a] = node_index[element.nodes[a]];
+      part.elements.push_back(element);
+    }
+  auto inside = [](const std::vector<int>& index) {
+    return [&index](int i) { return index[i] >= 0 ? std::optional<int>(index[i]) : std::nullopt; };
+  };
+  std::vector<std::string> dropped;
+  part.node_sets = kept(mesh.node_sets, inside(node_index), dropped);
+  part.element_sets = kept(mesh.element_sets, inside(element_index), dropped);
+  part.surfaces = kept(mesh.surfaces, [&](const Face& f) {
+    return element_index[f.element] >= 0 ? std::optional<Face>(Face{element_index[f.element], f.face}) : std::nullopt;
+  }, dropped);
+  if (notes && !dropped.empty())
+    notes->push_back("element set '" + elset + "' kept (" + std::to_string(part.elements.size()) + " of " +
+                     std::to_string(mesh.elements.size()) + " elements, " + std::to_string(part.nodes.size()) +
+                     " of " + std::to_string(mesh.nodes.size()) + " nodes); sets and surfaces outside it dropped: " +
+                     join(dropped));
+  return part;
 }
 
 }  // namespace cushion::mesh

@@ -71,4 +71,11 @@ double min_corner_jacobian(const Mesh& mesh, int e);
 /// the message (e.g. the file name).
 void check_elements(const Mesh& mesh, const std::string& where = "mesh");
 
+/// The part of `mesh` made of the elements of element set `elset` (name matched exactly, else
+/// ignoring case as ABAQUS does) and the nodes they use, in their original order and with their
+/// labels. Node sets, element sets and surfaces keep their members inside that part; sets and
+/// surfaces left empty are dropped, named in one line appended to `notes` (if given). Throws
+/// cushion::InputError "no element set 'X' (element sets: A, B)" for an unknown set.
+Mesh element_set_part(const Mesh& mesh, const std::string& elset, std::vector<std::string>* notes = nullptr);
+
 }  // namespace cushion::mesh

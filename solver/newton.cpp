@@ -17,10 +17,11 @@ std::string to_string(NewtonOutcome outcome) {
 }
 
 std::string format_iterate(const NewtonIterate& it) {
-  char line[220];
+  char line[260];
   std::snprintf(line, sizeof line, "iter %2d  |r|max %.3e N  |r|2 %.3e N  q %.3e N  |c|max %.3e mm  step %.3f%s",
                 it.iteration, it.residual_max, it.residual_norm, it.force_scale, it.correction_max, it.line_search,
-                it.iteration == 0 ? "" : it.new_tangent ? "  K new" : "  K reused");
+                it.iteration == 0 ? "" : it.refreshed ? "  K new (reused K failed the line search)"
+                                                   : it.new_tangent ? "  K new" : "  K reused");
   return line;
 }
 
@@ -30,6 +31,39 @@ double max_abs(const Eigen::VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoe
 
 bool usable(const ProblemEvaluation& ev, const Eigen::VectorXd& r) {
   return ev.status != material::Status::failed && r.allFinite();
+}
+
+// Backtracking line search along c from x on ||r||_2: quadratic model of ||r(x + s c)||^2 with slope
+// -2 ||r||^2, new factor clamped to [0.1 s, 0.5 s]; halving after a material failure. r_trial and ev
+// hold the last trial evaluated.
+struct LineSearch {
+  bool accepted = false;  ///< sufficient decrease (or no line search) at `step`
+  double step = 1.0;      ///< accepted factor [-]
+  double best_step = 0.0; ///< factor of the smallest usable trial residual (0: none usable) [-]
+};
+
+LineSearch line_search(NonlinearProblem& problem, const Eigen::VectorXd& x, const Eigen::VectorXd& c, double phi0,
+                       const NewtonOptions& options, bool want_tangent, Eigen::VectorXd& r_trial,
+                       ProblemEvaluation& ev) {
+  LineSearch out;
+  double s = 1.0, best_phi = INFINITY;
+  for (int ls = 0; ls <= options.max_line_search && s >= options.min_step; ++ls) {
+    ev = problem.evaluate(x + s * c, r_trial, want_tangent);
+    if (!usable(ev, r_trial)) {
+      s *= 0.5;
+      continue;
+    }
+    const double phi = r_trial.norm();
+    if (!options.line_search || phi <= (1.0 - 1e-4 * s) * phi0) {
+      out.accepted = true;
+      out.step = s;
+      return out;
+    }
+    if (phi < best_phi) best_phi = phi, out.best_step = s;
+    const double s_model = phi0 * phi0 * s * s / (phi * phi - phi0 * phi0 + 2.0 * phi0 * phi0 * s);
+    s = std::clamp(s_model, 0.1 * s, 0.5 * s);
+  }
+  return out;
 }
 
 }  // namespace
@@ -64,11 +98,12 @@ NewtonResult solve_newton(NonlinearProblem& problem, LinearSolver& linear, Eigen
 
   double c_max = 0.0, step = 0.0;           // last applied correction and its line-search factor
   bool new_tangent = false;                 // the last correction used a new factorization
+  bool refreshed = false;                   // ... after a reused one failed the line search
   double energy = 0.0, first_energy = 0.0;  // |c_k . r_k-1| and |c_1 . r_0|
   int growth = 0;                           // consecutive residual growths with a new tangent
   for (int k = 0;; ++k) {
     const double q = std::max({options.reference_force, ev.force_scale, options.force_floor});
-    const NewtonIterate it{k, max_abs(r), r.norm(), c_max, step, q, new_tangent};
+    const NewtonIterate it{k, max_abs(r), r.norm(), c_max, step, q, new_tangent, refreshed};
     result.history.push_back(it);
     if (log) log(it);
 
@@ -100,49 +135,42 @@ NewtonResult solve_newton(NonlinearProblem& problem, LinearSolver& linear, Eigen
       return give_up(NewtonOutcome::diverged, "not converged in " + std::to_string(options.max_iterations) + " iterations");
 
     // Correction K c = -r, with a new factorization unless a reused one is still contracting well.
+    // A reused factorization is kept only if its correction passes the line search with a full step;
+    // otherwise (a short step, no decrease, or material failure such as J <= 0 at every trial point)
+    // the iteration is redone with the tangent at the current iterate before anything is given up.
     new_tangent = !reuse || !held.current;
+    refreshed = false;
     Eigen::VectorXd c;
-    try {
-      if (new_tangent) {
-        if (!have_tangent) ev = problem.evaluate(x, r, true);  // same x: same r, now with its tangent
-        linear.factorize(problem.tangent());
-        held.current = true;
-        held.uses = 0;
+    LineSearch ls;
+    for (;;) {
+      try {
+        if (new_tangent) {
+          if (!have_tangent) ev = problem.evaluate(x, r, true);  // same x: same r, now with its tangent
+          linear.factorize(problem.tangent());
+          held.current = true;
+          held.uses = 0;
+        }
+        c = linear.solve(-r);
+        ++held.uses;
+      } catch (const SingularMatrixError& e) {
+        return give_up(NewtonOutcome::singular, e.what());
       }
-      c = linear.solve(-r);
-      ++held.uses;
-    } catch (const SingularMatrixError& e) {
-      return give_up(NewtonOutcome::singular, e.what());
+      ls = line_search(problem, x, c, it.residual_norm, options, !reuse, r_trial, ev);
+      if (new_tangent || (ls.accepted && ls.step == 1.0)) break;
+      new_tangent = refreshed = true;
+      have_tangent = false;
     }
-
-    // Backtracking line search on ||r||_2: quadratic model of ||r(x + s c)||^2 with slope -2 ||r||^2,
-    // new factor clamped to [0.1 s, 0.5 s]; halving after a material failure.
-    const double phi0 = it.residual_norm;
-    double s = 1.0, best_s = 0.0, best_phi = INFINITY;
-    bool accepted = false;
-    for (int ls = 0; ls <= options.max_line_search && s >= options.min_step; ++ls) {
-      ev = problem.evaluate(x + s * c, r_trial, !reuse);
-      if (!usable(ev, r_trial)) {
-        s *= 0.5;
-        continue;
-      }
-      const double phi = r_trial.norm();
-      if (!options.line_search || phi <= (1.0 - 1e-4 * s) * phi0) {
-        accepted = true;
-        break;
-      }
-      if (phi < best_phi) best_phi = phi, best_s = s;
-      const double s_model = phi0 * phi0 * s * s / (phi * phi - phi0 * phi0 + 2.0 * phi0 * phi0 * s);
-      s = std::clamp(s_model, 0.1 * s, 0.5 * s);
-    }
-    if (!accepted) {
-      if (best_phi == INFINITY)
+    if (refreshed) ++result.tangent_refreshes;
+    double s = ls.step;
+    if (!ls.accepted) {
+      if (ls.best_step == 0.0)
         return give_up(NewtonOutcome::failed, "material failure at every line-search point: " + ev.message);
-      s = best_s;  // no sufficient decrease: take the best trial; the divergence test decides later
+      s = ls.best_step;  // no sufficient decrease: take the best trial; the divergence test decides later
       ev = problem.evaluate(x + s * c, r_trial, !reuse);
     }
     have_tangent = !reuse;
-    if (reuse && (s < 1.0 || r_trial.norm() > options.tangent_reuse.max_contraction * phi0)) held.current = false;
+    if (reuse && (s < 1.0 || r_trial.norm() > options.tangent_reuse.max_contraction * it.residual_norm))
+      held.current = false;
     energy = std::abs(s * c.dot(r));
     if (k == 0) first_energy = energy;
     x += s * c;

@@ -15,9 +15,13 @@
 /// and nothing is factorized when the start point already passes the tests. With
 /// NewtonOptions::tangent_reuse (modified Newton) a factorization is kept across iterations and
 /// increments while it contracts the residual well (||r_k||_2 <= max_contraction ||r_k-1||_2 with a
-/// full step); after a slow, growing or shortened step, or any unconverged outcome (the caller then
-/// cuts back), the next correction factorizes the current tangent again. Same convergence tests,
-/// linear instead of quadratic rate, far fewer factorizations when they dominate the cost.
+/// full step); after a slow or growing step, or any unconverged outcome (the caller then cuts back),
+/// the next correction factorizes the current tangent again. A correction with a reused factorization
+/// that the line search cannot take in full (a shorter step, no sufficient decrease, or material
+/// failure such as J <= 0 at every trial point) is discarded and the iteration redone with the tangent
+/// at the current iterate (the standard fallback; logged "K new (reused K failed the line search)").
+/// Same convergence tests, linear instead of quadratic rate, far fewer factorizations when they
+/// dominate the cost.
 #include <functional>
 #include <string>
 #include <vector>
@@ -96,16 +100,19 @@ struct NewtonIterate {
   double line_search = 1.0;      ///< accepted line-search factor [-]
   double force_scale = 0.0;      ///< q used in the residual test [N]
   bool new_tangent = false;      ///< the correction used a new factorization (false: reused, or k = 0)
+  bool refreshed = false;        ///< ... because the reused one failed the line search (modified Newton)
 };
 
 /// One log line: "iter 3  |r|max 1.2e-04 N  |r|2 ...  |c|max ... mm  step 1.000  K new" (K: the
-/// tangent of the correction, "new" or "reused"; absent at iteration 0).
+/// tangent of the correction, "new", "reused" or "new (reused K failed the line search)"; absent at
+/// iteration 0).
 std::string format_iterate(const NewtonIterate& it);
 
 /// Outcome, iteration count and log of one solve.
 struct NewtonResult {
   NewtonOutcome outcome = NewtonOutcome::diverged;
   int iterations = 0;      ///< corrections applied
+  int tangent_refreshes = 0;  ///< modified Newton: iterations redone with a new tangent (reused one failed)
   double dt_factor = 1.0;  ///< smallest material proposal seen at accepted iterates
   std::string message;     ///< why, when not converged
   std::vector<NewtonIterate> history;

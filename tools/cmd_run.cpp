@@ -23,6 +23,7 @@ void run_command(RunCommandOptions o) {
   io::check_output_folder(o.out);  // before the mesh is built
   const solver::LoadedCase loaded = solver::load_case(o.case_file);
   o.out.inputs.insert(o.out.inputs.end(), {loaded.spec.material_file, loaded.spec.mesh.inp_file, loaded.spec.mesh.stl.file});
+  for (const std::string& warning : loaded.warnings) std::cerr << "cushion: warning: " << warning << "\n";
   solver::RunOptions options;
   options.output_dir = o.out.dir;
   options.threads = o.threads;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <set>
 #include <stdexcept>
 
@@ -53,15 +54,69 @@ std::vector<std::string> history_comments(const ContactSet& set, double force_fa
   return out;
 }
 
-/// The contact set of `c` on `mesh` (InputErrors prefixed by "<case file>: <c.key>").
-ContactSet build_set(const ContactSpec& c, const mesh::Mesh& mesh, const CaseSpec& spec) {
+void warn(AnalysisContext& ctx, const std::string& note) {
+  ctx.log() << "  warning: " << note << "\n";
+  ctx.report_progress("warning: " + note);
+}
+
+// The plane x[axis] = c if every node of `nodes` lies on it (within `tolerance` [mm]).
+std::optional<AxisPlane> common_plane(const mesh::Mesh& mesh, const std::vector<int>& nodes, int axis,
+                                      double tolerance) {
+  if (nodes.empty()) return std::nullopt;
+  const double c = mesh.nodes[nodes.front()][axis];
+  for (int n : nodes)
+    if (std::abs(mesh.nodes[n][axis] - c) > tolerance) return std::nullopt;
+  return AxisPlane{axis, c};
+}
+
+// Planes of the model where a boundary condition of any step holds the normal displacement of a set
+// lying in it (symmetry conditions apart from fixed or zero-displacement ones). Tolerance: 1e-6 of
+// the mesh's bounding-box diagonal.
+HeldPlanes held_planes(const CaseSpec& spec, const mesh::Mesh& mesh) {
+  HeldPlanes out;
+  mesh::Vec3 lo = mesh.nodes.front(), hi = lo;
+  for (const mesh::Vec3& x : mesh.nodes) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+  out.tolerance = 1e-6 * (hi - lo).norm();
+  auto add = [&](std::vector<AxisPlane>& planes, const AxisPlane& p) {
+    for (const AxisPlane& q : planes)
+      if (q.axis == p.axis && std::abs(q.offset - p.offset) <= out.tolerance) return;
+    planes.push_back(p);
+  };
+  for (const StepSpec& step : spec.steps)
+    for (const BoundarySpec& bc : step.boundary) {
+      const auto set = mesh.node_sets.find(bc.set);
+      const bool zero = bc.kind != BoundarySpec::Kind::displacement || (bc.value == 0.0 && !bc.amplitude);
+      if (set == mesh.node_sets.end() || !zero) continue;
+      for (int axis = 0; axis < 3; ++axis)
+        if (bc.dofs[axis])
+          if (const auto plane = common_plane(mesh, set->second, axis, out.tolerance))
+            add(bc.kind == BoundarySpec::Kind::symmetry ? out.symmetry : out.held, *plane);
+    }
+  return out;
+}
+
+/// The contact set of `c` on `mesh` (InputErrors prefixed by "<case file>: <c.key>"); the indenter's notes
+/// (e.g. STL triangles dropped in a symmetry plane) go to `notes` when given.
+ContactSet build_set(const ContactSpec& c, const mesh::Mesh& mesh, const CaseSpec& spec,
+                     std::vector<std::string>* notes = nullptr) {
   const std::string where = spec.file.string() + ": " + c.key;
   try {
-    return ContactSet(c.name, mesh, node_set(mesh, spec, c), make_indenter(c.indenter, where + ".indenter"), c.parameters);
+    std::vector<std::string> dropped;
+    auto surface = make_indenter(c.indenter, where + ".indenter", held_planes(spec, mesh), &dropped);
+    if (notes) notes->insert(notes->end(), dropped.begin(), dropped.end());
+    return ContactSet(c.name, mesh, node_set(mesh, spec, c), std::move(surface), c.parameters);
   } catch (const InputError& e) {
     const std::string what = e.what();
     throw InputError(what.rfind(where, 0) == 0 ? what : where + ": " + what);
   }
+}
+
+/// build_set for a run: the indenter's notes become warnings in the log and the progress.
+ContactSet build_set_warning(const ContactSpec& c, AnalysisContext& ctx) {
+  std::vector<std::string> notes;
+  ContactSet set = build_set(c, ctx.mesh(), ctx.spec(), &notes);
+  for (const std::string& note : notes) warn(ctx, note);
+  return set;
 }
 
 /// check_no_initial_penetration at displacements u, as an InputError naming the case file and c.key.
@@ -98,7 +153,7 @@ std::vector<std::string> contact_history_columns(const std::string& n) {
 }
 
 ContactContributor::ContactContributor(const ContactSpec& spec, AnalysisContext& ctx)
-    : ctx_(ctx), set_(build_set(spec, ctx.mesh(), ctx.spec())), force_factor_(spec.force_factor),
+    : ctx_(ctx), set_(build_set_warning(spec, ctx)), force_factor_(spec.force_factor),
       force_factors_(full_model_factors(spec.force_factor, first_step_with(ctx.spec(), spec.name), ctx.mesh(),
                                         set_.nodes())),
       history_(ctx.output().pvd_file().parent_path() / ("contact_" + spec.name + ".csv"),
@@ -173,10 +228,7 @@ void ContactContributor::commit() {
     note = "contact '" + set_.name() + "': no node of set '" + step_spec_.set + "' touched the indenter in step '" +
            step_->name + "' (smallest gap " + fmt("%.4g", t.min_gap) + " mm at the end); check its position and motion";
   }
-  if (!note.empty()) {
-    ctx_.log() << "  warning: " << note << "\n";
-    ctx_.report_progress("warning: " + note);
-  }
+  if (!note.empty()) warn(ctx_, note);
 }
 
 void ContactContributor::revert() { set_.revert(); }

@@ -91,7 +91,7 @@ CaseSpec parse_case_json(const std::string& text, const std::filesystem::path& f
   CaseSpec spec;
   spec.file = file;
   if (top.has("description")) spec.description = top.string("description");
-  spec.mesh = case_parse::parse_mesh(top.child("mesh", {"generate", "inp", "stl", "formulation", "type",
+  spec.mesh = case_parse::parse_mesh(top.child("mesh", {"generate", "inp", "stl", "formulation", "type", "elset",
                                                         "max_volume_mm3", "max_radius_edge", "min_dihedral_deg"}));
   spec.material_file = top.child("material", {"file"}).file("file");
   if (top.has("sets")) spec.sets = case_parse::parse_sets(top);

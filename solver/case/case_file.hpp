@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "material/io/material_file.hpp"
 #include "mesh/mesh.hpp"
@@ -20,8 +21,9 @@ CaseSpec read_case_file(const std::filesystem::path& file);
 
 /// Builds the mesh the case describes (generator, .inp reader or TetGen on an STL), then adds the
 /// case's selector sets to mesh.node_sets (a case set replaces a mesh set of the same name; an
-/// empty selection is an InputError) and checks that every set a step names exists.
-mesh::Mesh build_case_mesh(const CaseSpec& spec);
+/// empty selection is an InputError) and checks that every set a step names exists. Warnings that do
+/// not stop the run (keywords an .inp reader skipped, sets outside mesh.elset) go to `warnings`.
+mesh::Mesh build_case_mesh(const CaseSpec& spec, std::vector<std::string>* warnings = nullptr);
 
 /// Throws InputError naming the first step key that refers to a node set absent from `node_sets`
 /// (boundary, history, contact and steady-state sets).
@@ -32,6 +34,7 @@ struct LoadedCase {
   CaseSpec spec;
   mesh::Mesh mesh;
   material::MaterialDefinition material;
+  std::vector<std::string> warnings;  ///< from building the mesh; `cushion run` prints them on stderr
 };
 
 /// The checks that need the built mesh and material, run before the first step (nothing is written

@@ -13,7 +13,19 @@ namespace cushion::solver {
 
 namespace {
 
-mesh::Mesh build_raw_mesh(const CaseSpec& spec) {
+// The .inp mesh, or the part of it in mesh.elset; warnings (ignored keywords, dropped sets) to `warnings`.
+mesh::Mesh read_inp_mesh(const CaseSpec& spec, std::vector<std::string>* warnings) {
+  const MeshSpec& m = spec.mesh;
+  mesh::Mesh all = mesh::read_inp(m.inp_file.string(), warnings);
+  if (m.inp_elset.empty()) return all;
+  try {
+    return mesh::element_set_part(all, m.inp_elset, warnings);
+  } catch (const InputError& e) {
+    throw InputError(spec.file.string() + ": mesh.elset: " + e.what() + " in " + m.inp_file.string());
+  }
+}
+
+mesh::Mesh build_raw_mesh(const CaseSpec& spec, std::vector<std::string>* warnings) {
   const MeshSpec& m = spec.mesh;
   switch (m.source) {
     case MeshSpec::Source::generate: {
@@ -27,7 +39,7 @@ mesh::Mesh build_raw_mesh(const CaseSpec& spec) {
       return m.generate.type == mesh::ElementType::tet10 ? mesh::to_tet10(out) : out;
     }
     case MeshSpec::Source::inp:
-      return mesh::read_inp(m.inp_file.string());
+      return read_inp_mesh(spec, warnings);
     case MeshSpec::Source::stl: {
       mesh::TetgenOptions options;
       options.max_volume = m.stl.max_volume;
@@ -43,8 +55,8 @@ mesh::Mesh build_raw_mesh(const CaseSpec& spec) {
 
 }  // namespace
 
-mesh::Mesh build_case_mesh(const CaseSpec& spec) {
-  mesh::Mesh out = build_raw_mesh(spec);
+mesh::Mesh build_case_mesh(const CaseSpec& spec, std::vector<std::string>* warnings) {
+  mesh::Mesh out = build_raw_mesh(spec, warnings);
   if (spec.mesh.formulation == HexFormulation::fbar &&
       std::any_of(out.elements.begin(), out.elements.end(),
                   [](const mesh::Element& e) { return e.type != mesh::ElementType::hex8; }))
@@ -69,7 +81,7 @@ LoadedCase load_case(const std::filesystem::path& file) {
   } catch (const InputError& e) {
     throw InputError(file.string() + ": material.file: " + e.what());
   }
-  loaded.mesh = build_case_mesh(loaded.spec);
+  loaded.mesh = build_case_mesh(loaded.spec, &loaded.warnings);
   check_loaded_case(loaded);
   return loaded;
 }

@@ -13,7 +13,8 @@
 ///                                                              nx ny nz <= 1e7 cells
 ///                   "grading"?: {"x"|"y"|"z": {"ratio": r, "focus_mm"?: f}}}}
 ///                        ratio = h_last/h_first (geometric) or h_coarsest/h_finest (with focus_mm)
-///      {"inp": "mesh.inp"}                                      ABAQUS input file (nodes, elements, *NSET)
+///      {"inp": "mesh.inp", "elset"?: "FOAM"}                    ABAQUS input file (nodes, elements, *NSET);
+///                        elset: only that element set and its nodes (e.g. a deck with a meshed indenter)
 ///      {"stl": "part.stl", "max_volume_mm3": v,                 TetGen volume mesh of a closed STL [mm^3]
 ///       "type"?: "tet4" | "tet10" = "tet4", "max_radius_edge"? = 1.5, "min_dihedral_deg"? = 0}
 ///     plus "formulation"?: "full" | "fbar" = "full"              hex8 only (F-bar: de Souza Neto 1996)
@@ -129,6 +130,7 @@ struct MeshSpec {
   enum class Source { generate, inp, stl } source = Source::generate;
   GenerateMeshSpec generate;        ///< source == generate
   std::filesystem::path inp_file;   ///< source == inp, resolved against the case folder
+  std::string inp_elset;            ///< source == inp: keep only this element set (empty: all elements)
   StlMeshSpec stl;                  ///< source == stl
   HexFormulation formulation = HexFormulation::full;  ///< hex8 elements only
 };

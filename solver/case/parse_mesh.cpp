@@ -90,11 +90,14 @@ MeshSpec parse_mesh(const Obj& o) {
   } else if (o.has("inp")) {
     m.source = MeshSpec::Source::inp;
     m.inp_file = o.file("inp");
+    if (o.has("elset")) m.inp_elset = o.string("elset");
+    if (o.has("elset") && m.inp_elset.empty()) o.fail("elset", "must name an element set of the .inp file");
   } else {
     m.source = MeshSpec::Source::stl;
     hex_possible = false;
     m.stl = parse_stl(o);
   }
+  if (o.has("elset") && !o.has("inp")) o.fail("elset", "is an option of \"inp\" meshes only");
   if (o.has("type") && !o.has("stl")) o.fail("type", "is an option of \"stl\" meshes (use generate.type)");
   for (const char* k : {"max_volume_mm3", "max_radius_edge", "min_dihedral_deg"})
     if (o.has(k) && !o.has("stl")) o.fail(k, "is an option of \"stl\" meshes only");

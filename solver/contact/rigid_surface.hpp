@@ -61,6 +61,27 @@ std::shared_ptr<const RigidSurface> make_sitbar(const SitBarShape& shape);
 /// surface is not closed; `where` names it in messages.
 std::shared_ptr<const RigidSurface> make_stl_surface(const mesh::TriangleSurface& surface, const std::string& where);
 
+/// An axis-aligned plane x[axis] = offset [mm] (axis 0, 1, 2: x, y, z).
+struct AxisPlane {
+  int axis = 0;
+  double offset = 0.0;  ///< [mm]
+};
+/// "x = 0 mm".
+std::string to_string(const AxisPlane& plane);
+
+/// Indices of the triangles whose three vertices lie within `tolerance` [mm] of `plane`.
+std::vector<int> facets_in_plane(const mesh::TriangleSurface& surface, const AxisPlane& plane, double tolerance);
+
+/// make_stl_surface for a model cut by symmetry planes: after the closed check, the triangles lying in
+/// one of `symmetry_planes` (within `tolerance` [mm]) are removed and their number is returned in
+/// `dropped`. Such triangles close the cut body on a symmetry plane, where the mirrored body continues
+/// it; kept, they are a wall that the foam nodes on the plane touch with gap 0 however deep they are
+/// pressed. The signed distance to the remaining (open) surface keeps its sign from the pseudonormals
+/// of the nearest feature. Throws InputError if no triangle is left.
+std::shared_ptr<const RigidSurface> make_stl_surface(const mesh::TriangleSurface& surface, const std::string& where,
+                                                     const std::vector<AxisPlane>& symmetry_planes, double tolerance,
+                                                     int& dropped);
+
 /// Soft minimum of two gap functions of width k [mm] (quadratic, C1): equal to min(a, b) where
 /// |a.g - b.g| >= k, smooth in between; derivatives by the chain rule.
 GapPoint soft_min(const GapPoint& a, const GapPoint& b, double k);

@@ -6,9 +6,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <numeric>
 
+#include "io/input_error.hpp"
 #include "solver/contact/rigid_surface.hpp"
 
 namespace cushion::solver {
@@ -50,7 +52,9 @@ struct Box {
 
 class StlSurface final : public RigidSurface {
  public:
-  StlSurface(const mesh::TriangleSurface& s, std::string where) : s_(s), where_(std::move(where)) {
+  /// `dropped`: triangles of the closed surface removed on symmetry planes (for describe()).
+  StlSurface(const mesh::TriangleSurface& s, std::string where, int dropped = 0)
+      : s_(s), where_(std::move(where)), dropped_(dropped) {
     const std::size_t nt = s_.triangles.size();
     face_normal_.resize(nt);
     vertex_normal_.assign(s_.vertices.size(), Vec3::Zero());
@@ -112,7 +116,8 @@ class StlSurface final : public RigidSurface {
   }
 
   std::string describe() const override {
-    return "closed STL surface " + where_ + " (" + std::to_string(s_.triangles.size()) + " triangles)";
+    return "closed STL surface " + where_ + " (" + std::to_string(s_.triangles.size()) + " triangles" +
+           (dropped_ ? "; " + std::to_string(dropped_) + " more in symmetry planes dropped" : "") + ")";
   }
 
  private:
@@ -174,6 +179,7 @@ class StlSurface final : public RigidSurface {
 
   mesh::TriangleSurface s_;
   std::string where_;
+  int dropped_ = 0;
   std::vector<Vec3> face_normal_, vertex_normal_;
   std::vector<std::array<Vec3, 3>> edge_normal_;  ///< per triangle, edge k = (k, k+1)
   std::vector<int> order_;
@@ -185,6 +191,40 @@ class StlSurface final : public RigidSurface {
 std::shared_ptr<const RigidSurface> make_stl_surface(const mesh::TriangleSurface& surface, const std::string& where) {
   mesh::check_closed(surface, where);
   return std::make_shared<StlSurface>(surface, where);
+}
+
+std::string to_string(const AxisPlane& plane) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%c = %g mm", "xyz"[plane.axis], plane.offset);
+  return text;
+}
+
+std::vector<int> facets_in_plane(const mesh::TriangleSurface& surface, const AxisPlane& plane, double tolerance) {
+  std::vector<int> out;
+  for (std::size_t t = 0; t < surface.triangles.size(); ++t) {
+    const auto& tri = surface.triangles[t];
+    if (std::all_of(tri.begin(), tri.end(), [&](int v) {
+          return std::abs(surface.vertices[v][plane.axis] - plane.offset) <= tolerance;
+        }))
+      out.push_back(static_cast<int>(t));
+  }
+  return out;
+}
+
+std::shared_ptr<const RigidSurface> make_stl_surface(const mesh::TriangleSurface& surface, const std::string& where,
+                                                     const std::vector<AxisPlane>& symmetry_planes, double tolerance,
+                                                     int& dropped) {
+  mesh::check_closed(surface, where);
+  std::vector<char> drop(surface.triangles.size(), 0);
+  for (const AxisPlane& plane : symmetry_planes)
+    for (int t : facets_in_plane(surface, plane, tolerance)) drop[t] = 1;
+  mesh::TriangleSurface kept{surface.vertices, {}};
+  for (std::size_t t = 0; t < surface.triangles.size(); ++t)
+    if (!drop[t]) kept.triangles.push_back(surface.triangles[t]);
+  dropped = static_cast<int>(surface.triangles.size() - kept.triangles.size());
+  if (kept.triangles.empty())
+    throw InputError(where + ": every triangle lies in a symmetry plane of the model; no contact surface is left");
+  return std::make_shared<StlSurface>(kept, where, dropped);
 }
 
 }  // namespace cushion::solver

@@ -152,8 +152,59 @@ TEST(InpReader, ReadsEveryKeyword) {
   EXPECT_EQ(mesh.surfaces.at("FREE").size(), 10u);  // 2 hexes side by side: 12 - 2 shared faces
   // Notes: *HEADING, *MATERIAL, *HYPERFOAM, *STEP, *STATIC, *END STEP skipped, with file:line.
   ASSERT_EQ(notes.size(), 6u);
-  EXPECT_EQ(notes[0], "model.inp:1: *HEADING ignored (not a mesh keyword)");
-  EXPECT_EQ(notes[5], "model.inp:61: *END STEP ignored (not a mesh keyword)");
+  const std::string read_only = " (mesh import reads only *NODE, *ELEMENT, *NSET, *ELSET, *SURFACE, *INCLUDE)";
+  EXPECT_EQ(notes[0], "model.inp:1: keyword *HEADING ignored" + read_only);
+  EXPECT_EQ(notes[5], "model.inp:61: keyword *END STEP ignored" + read_only);
+}
+
+TEST(InpReader, RepeatedIgnoredKeywordIsReportedOnceWithItsCount) {
+  const std::string deck = std::string(kDeck) + "*STEP\n*BOUNDARY\n1, 1, 3\n*END STEP\n*BOUNDARY\n2, 1, 3\n";
+  std::vector<std::string> notes;
+  cm::parse_inp(deck, "model.inp", &notes);
+  ASSERT_EQ(notes.size(), 7u);  // the 6 keywords of kDeck once each, then *BOUNDARY
+  EXPECT_EQ(notes[3], "model.inp:59: keyword *STEP ignored (2 times, the first here; mesh import reads only "
+                      "*NODE, *ELEMENT, *NSET, *ELSET, *SURFACE, *INCLUDE)");
+  EXPECT_EQ(notes[6].rfind("model.inp:63: keyword *BOUNDARY ignored (2 times, the first here; ", 0), 0u) << notes[6];
+}
+
+// A deck with a meshed indenter (the tets of kDeck stand for it): only the foam's element set is kept.
+TEST(InpReader, ElementSetPartKeepsItsElementsNodesAndSets) {
+  const cm::Mesh all = cm::parse_inp(kDeck, "model.inp");
+  std::vector<std::string> notes;
+  const cm::Mesh foam = cm::element_set_part(all, "foam", &notes);  // case-insensitive, as ABAQUS
+  ASSERT_EQ(foam.num_elements(), 2u);
+  ASSERT_EQ(foam.num_nodes(), 12u);
+  EXPECT_EQ(foam.node_labels.back(), 12);
+  EXPECT_EQ(foam.nodes[8], Vec3(2, 0, 0));
+  EXPECT_EQ(foam.elements[1].label, 12);
+  EXPECT_EQ(foam.elements[1].nodes, all.elements[1].nodes);  // nodes 1..12 keep their indices
+  EXPECT_EQ(foam.node_sets.at("BOTTOM"), all.node_sets.at("BOTTOM"));
+  EXPECT_EQ(foam.element_sets.at("ALLEL"), (std::vector<int>{0, 1}));
+  EXPECT_EQ(foam.element_sets.count("TETS"), 0u);
+  EXPECT_EQ(foam.surfaces.at("FREE").size(), 10u);
+  EXPECT_EQ(foam.surfaces.count("MIXED"), 0u);
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_EQ(notes[0], "element set 'foam' kept (2 of 4 elements, 12 of 22 nodes); sets and surfaces outside it "
+                      "dropped: TETS, MIXED");
+  EXPECT_NO_THROW(cm::check_elements(foam, "foam"));
+
+  // The other part: two element types, nodes renumbered from 0, sets of the foam dropped.
+  const cm::Mesh tets = cm::element_set_part(all, "TETS");
+  ASSERT_EQ(tets.num_nodes(), 10u);
+  EXPECT_EQ(tets.node_labels.front(), 101);
+  EXPECT_EQ(tets.elements[0].type, cm::ElementType::tet4);
+  EXPECT_EQ(tets.elements[1].type, cm::ElementType::tet10);
+  EXPECT_EQ(tets.elements[1].nodes[9], 9);
+  EXPECT_EQ(tets.surfaces.at("MIXED").size(), 2u);
+  EXPECT_TRUE(tets.node_sets.empty());
+  EXPECT_NO_THROW(cm::check_elements(tets, "tets"));
+
+  try {
+    cm::element_set_part(all, "INDENTER");
+    FAIL() << "an unknown element set was accepted";
+  } catch (const cushion::InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "no element set 'INDENTER' (element sets: ALLEL, FOAM, GEN, TETS)");
+  }
 }
 
 TEST(InpReader, RoundTripThroughWriter) {

@@ -54,4 +54,13 @@ inline RunSummary run_case(const fs::path& case_file, const fs::path& out) {
 
 inline CsvTable read_history(const fs::path& out) { return read_csv(out / "history.csv"); }
 
+/// y at x = at, linear between the points of (x, y) with x increasing; a test failure if `at` is outside.
+inline double interpolate(const std::vector<double>& x, const std::vector<double>& y, double at) {
+  for (std::size_t i = 1; i < x.size() && i < y.size(); ++i)
+    if (x[i - 1] <= at && at <= x[i] && x[i] > x[i - 1])
+      return y[i - 1] + (y[i] - y[i - 1]) * (at - x[i - 1]) / (x[i] - x[i - 1]);
+  ADD_FAILURE() << at << " outside the table";
+  return 0.0;
+}
+
 }  // namespace cushion::solver::test
