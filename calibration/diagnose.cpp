@@ -474,25 +474,48 @@ struct CandidateJobs {
   bool base_ref() const {
     return baseline.base == material::MaterialSpec::Base::hyperfoam && !baseline.hyperfoam.empty();
   }
-  /// A job fitting these effects (scan: coarse start scan first; refit_base: with the base-refit factors).
+  /// The base that joint candidates start from: the base refit when it converged (its factors are the best
+  /// base without any effect, so a joint candidate starts no worse than the reference), else the baseline.
+  const material::MaterialSpec& joint_start() const {
+    return d.base_refit && d.base_refit->converged ? d.base_refit->fitted : baseline;
+  }
+  /// A job fitting these effects (scan: coarse start scan first; refit_base: with the base-refit factors, from
+  /// joint_start()).
   std::function<CandidateFit()> job(std::vector<material::EffectSpec> effects, bool scan, bool refit_base) const {
     return [this, effects = std::move(effects), scan, refit_base] {
-      return fit_candidate(baseline, effects, campaign, d.noise, d.residuals, d.baseline_bic, options, scan, refit_base);
+      const material::MaterialSpec& base = refit_base && !effects.empty() ? joint_start() : baseline;
+      return fit_candidate(base, effects, campaign, d.noise, d.residuals, d.baseline_bic, options, scan, refit_base);
     };
   }
 };
 
+/// The fitted spec of a candidate without the candidate's own effects: its (refitted) base.
+material::MaterialSpec base_of(const CandidateFit& f) {
+  material::MaterialSpec s = f.fitted;
+  std::erase_if(s.effects, [&](const material::EffectSpec& e) {
+    return std::find(f.kinds.begin(), f.kinds.end(), e.kind) != f.kinds.end();
+  });
+  return s;
+}
+
 /// Candidates: every single effect (with the base-refit factors under joint_base) and the reference, the
 /// base refitted WITHOUT any effect. An effect must beat the reference too, else the residual is as well
-/// explained by a base calibration that is slightly off. Returns the singles in catalogue order.
+/// explained by a base calibration that is slightly off. Under joint_base the reference is fitted first and every
+/// candidate starts from it (else a joint candidate, 8 base factors plus its own parameters from a cold start,
+/// could end worse than the base refit alone within its iteration limit). Returns the singles in catalogue order.
 std::vector<CandidateFit> fit_singles_and_reference(const CandidateJobs& c,
                                                     const std::vector<std::vector<material::EffectSpec>>& singles,
                                                     Diagnosis& d, std::ostream& log) {
+  const bool joint = c.options.joint_base && c.base_ref();
   std::vector<std::function<CandidateFit()>> jobs;
-  for (const auto& s : singles) jobs.push_back(c.job(s, true, c.options.joint_base && c.base_ref()));
-  if (c.base_ref()) jobs.push_back(c.job({}, true, true));
+  if (joint) {  // the reference first: the joint candidates start from it
+    d.base_refit = c.job({}, true, true)();
+    log_fit(log, *d.base_refit, false);
+  }
+  for (const auto& s : singles) jobs.push_back(c.job(s, true, joint));
+  if (c.base_ref() && !joint) jobs.push_back(c.job({}, true, true));
   std::vector<CandidateFit> fits = run_all(jobs, c.options.threads);
-  if (c.base_ref()) {
+  if (c.base_ref() && !joint) {
     d.base_refit = std::move(fits.back());
     fits.pop_back();
     log_fit(log, *d.base_refit, false);
@@ -516,15 +539,23 @@ std::vector<std::size_t> pair_sources(const std::vector<CandidateFit>& fits, con
   return top;
 }
 
-/// Pairs of the best singles, two by two, started from their single fits (no scan).
+/// Pairs of the best singles, two by two, started from their single fits (no scan); a joint pair starts from the
+/// better single's refitted base, so that it starts where that single ended.
 std::vector<CandidateFit> fit_pairs(const CandidateJobs& c, const std::vector<CandidateFit>& fits,
                                     const std::vector<std::size_t>& top, std::ostream& log) {
+  const bool joint = c.options.joint_base && c.base_ref();
   std::vector<std::function<CandidateFit()>> jobs;
   for (std::size_t a = 0; a < top.size(); ++a)
     for (std::size_t b = a + 1; b < top.size(); ++b) {
       std::vector<material::EffectSpec> e = fits[top[a]].effects;
       e.push_back(fits[top[b]].effects.front());
-      jobs.push_back(c.job(e, false, c.options.joint_base && c.base_ref()));
+      if (!joint) {
+        jobs.push_back(c.job(e, false, false));
+        continue;
+      }
+      jobs.push_back([&c, e, base = base_of(fits[top[a]])] {
+        return fit_candidate(base, e, c.campaign, c.d.noise, c.d.residuals, c.d.baseline_bic, c.options, false, true);
+      });
     }
   std::vector<CandidateFit> pairs = run_all(jobs, c.options.threads);
   for (const auto& f : pairs) log_fit(log, f, false);
@@ -556,6 +587,113 @@ void rank_candidates(std::vector<CandidateFit> fits, std::vector<CandidateFit> p
     if (a.supported != b.supported) return a.supported;
     return a.delta_bic > b.delta_bic;
   });
+}
+
+/// A campaign reduced to some of its material-level tests (index order: quasi-static, then dynamic) with
+/// the noise estimates of the tests kept; structure-level tests are kept as they are.
+struct CampaignSubset {
+  Campaign campaign;
+  std::vector<TestNoise> noise;
+};
+
+CampaignSubset subset(const Campaign& c, const std::vector<TestNoise>& noise, const std::function<bool(std::size_t)>& keep) {
+  CampaignSubset s{c, {}};
+  s.campaign.quasi_static.clear();
+  s.campaign.dynamic.clear();
+  const std::size_t nq = c.quasi_static.size();
+  for (std::size_t k = 0; k < nq + c.dynamic.size(); ++k) {
+    if (!keep(k)) continue;
+    if (k < nq) s.campaign.quasi_static.push_back(c.quasi_static[k]);
+    else s.campaign.dynamic.push_back(c.dynamic[k - nq]);
+    if (k < noise.size()) s.noise.push_back(noise[k]);
+  }
+  return s;
+}
+
+/// chi2 of one test of a comparison.
+double test_chi2(const TestCompare& t, int points) {
+  CompareResult one;
+  one.tests = {t};
+  return chi2_of(one, points);
+}
+
+
+/// Refits `f` (from its full-campaign fit) on every material-level test but `held`, then predicts `held`:
+/// its chi2, or NaN when the refit or the prediction fails.
+double held_out_chi2(const CandidateFit& f, const CandidateJobs& c, std::size_t held) {
+  const auto& points = c.options.quasi_static_points;
+  const CampaignSubset rest = subset(c.campaign, c.d.noise, [&](std::size_t k) { return k != held; });
+  const CampaignSubset one = subset(c.campaign, c.d.noise, [&](std::size_t k) { return k == held; });
+  CompareResult kept = f.compare;
+  kept.tests.erase(kept.tests.begin() + static_cast<std::ptrdiff_t>(held));
+  DiagnoseOptions o = c.options;
+  o.max_iterations = c.options.held_out_iterations;
+  const CandidateFit refit = fit_candidate(base_of(f), f.effects, rest.campaign, rest.noise,
+                                           normalised_residuals(kept, points).size(), 0.0, o, false, f.base_refitted);
+  if (refit.message.rfind("failed", 0) == 0) return std::numeric_limits<double>::quiet_NaN();
+  try {
+    const material::MaterialDefinition def = material::build_material(refit.fitted, "held-out refit");
+    const CompareResult r = compare_campaign(*def.model, one.campaign, c.options.compare, one.noise);
+    if (r.tests.empty() || !r.tests.front().failure.empty()) return std::numeric_limits<double>::quiet_NaN();
+    return test_chi2(r.tests.front(), points);
+  } catch (const std::exception&) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+}
+
+/// The leave-one-test-out check of candidate `f` (HeldOutCheck) against the base refit (or, without one, the
+/// baseline as given, which has nothing to refit).
+HeldOutCheck check_held_out(const CandidateFit& f, const CandidateJobs& c, std::ostream& log) {
+  const auto t0 = Clock::now();
+  HeldOutCheck h;
+  h.candidate = f.name();
+  const Diagnosis& d = c.d;
+  const bool reference_refit = d.base_refit && d.base_refit->converged;
+  std::vector<std::size_t> held;
+  for (std::size_t i = 0; i < d.noise.size() && i < f.compare.tests.size(); ++i)
+    if (d.noise[i].known) held.push_back(i);
+  std::vector<std::function<CandidateFit()>> jobs;  // results carry chi2 in CandidateFit::chi2
+  for (std::size_t i : held) {
+    jobs.push_back([&f, &c, i] { CandidateFit r; r.chi2 = held_out_chi2(f, c, i); return r; });
+    if (reference_refit)
+      jobs.push_back([&d, &c, i] { CandidateFit r; r.chi2 = held_out_chi2(*d.base_refit, c, i); return r; });
+  }
+  const std::vector<CandidateFit> out = run_all(jobs, c.options.threads);
+  const std::size_t per = reference_refit ? 2 : 1;
+  for (std::size_t j = 0; j < held.size(); ++j) {
+    const double cand = out[per * j].chi2;
+    const double ref = reference_refit ? out[per * j + 1].chi2 : test_chi2(d.baseline.tests[held[j]], c.options.quasi_static_points);
+    h.tests.push_back(d.baseline.tests[held[j]].name);
+    h.chi2_candidate.push_back(cand);
+    h.chi2_reference.push_back(ref);
+    h.total_candidate += cand;
+    h.total_reference += ref;
+    if (!std::isfinite(cand) || !std::isfinite(ref))
+      h.failure = "the refit without " + h.tests.back() + " or its prediction failed";
+  }
+  if (held.size() < 2) h.failure = "fewer than two tests with a noise estimate: nothing to hold out";
+  h.confirmed = h.failure.empty() && h.total_candidate < h.total_reference - c.options.held_out_margin;
+  h.seconds = seconds_since(t0);
+  log << "diagnose: held-out check of " << h.candidate << ": chi2 of the left-out tests " << fmt(h.total_candidate, 4)
+      << " vs " << fmt(h.total_reference, 4) << (reference_refit ? " (base refit)" : " (baseline)") << ": "
+      << (h.confirmed ? "confirmed" : "NOT confirmed" + (h.failure.empty() ? "" : " (" + h.failure + ")")) << ", "
+      << fmt(h.seconds, 2) << " s\n";
+  return h;
+}
+
+/// Checks the supported candidates out of sample, best first (at most three), and moves the first confirmed
+/// one to the front; the ones that fail lose their support. No-op unless options.held_out.
+void confirm_out_of_sample(const CandidateJobs& c, Diagnosis& d, std::ostream& log) {
+  if (!c.options.held_out) return;
+  for (std::size_t i = 0; i < d.candidates.size() && i < 3 && d.candidates[i].supported; ++i) {
+    d.held_out.push_back(check_held_out(d.candidates[i], c, log));
+    if (d.held_out.back().confirmed) {
+      std::rotate(d.candidates.begin(), d.candidates.begin() + static_cast<std::ptrdiff_t>(i),
+                  d.candidates.begin() + static_cast<std::ptrdiff_t>(i) + 1);
+      return;
+    }
+    d.candidates[i].supported = false;
+  }
 }
 
 /// One effect as a material-file entry: {"kind": ..., parameter: value, ...}.
@@ -608,6 +746,16 @@ void winner_verdict(const material::MaterialSpec& baseline, const DiagnoseOption
 void no_winner_verdict(const DiagnoseOptions& options, Diagnosis& d) {
   d.fragment = nullptr;
   std::ostringstream o;
+  if (!d.held_out.empty()) {
+    const HeldOutCheck& h = d.held_out.front();
+    o << "No effect is named: " << h.candidate << " improves the fit of the tests it is fitted on, but it does not "
+      << "predict tests left out of its fit better than a refitted base (held-out chi2 " << fmt(h.total_candidate, 4)
+      << " vs " << fmt(h.total_reference, 4) << (h.failure.empty() ? "" : "; " + h.failure) << ")";
+    if (d.held_out.size() > 1) o << ", nor do the next " << d.held_out.size() - 1 << " supported candidate(s)";
+    o << ". The misfit is more likely a base calibration or protocol detail than a missing effect: recalibrate "
+         "(`cushion fit`, e.g. --refit-on all), check the campaign's protocol keys, or add a test that separates "
+         "the candidates (another rate or preload). ";
+  }
   if (base_gain(d) > options.strong_evidence) {
     const CandidateFit& b = *d.base_refit;
     o << "No effect can be told from a base calibration that is slightly off: refitting only the base moduli "
@@ -647,6 +795,7 @@ Diagnosis diagnose(const material::MaterialSpec& baseline, const Campaign& campa
     const std::vector<std::size_t> top = pair_sources(singles, options);
     std::vector<CandidateFit> pairs = fit_pairs(jobs, singles, top, log);
     rank_candidates(std::move(singles), std::move(pairs), top, options, d);
+    confirm_out_of_sample(jobs, d, log);
     if (!d.candidates.empty() && d.candidates.front().supported)
       winner_verdict(baseline, options, d);
     else

@@ -28,6 +28,8 @@
 ///     every test then lies at the noise level, the evidence in words (data signatures: rate dependence
 ///     of the hysteresis, loading vs unloading, phase and modulus error vs frequency, preload dependence
 ///     of the dynamic modulus), and the material-file fragment that adds it.
+///  6. Out of sample (HeldOutCheck, options.held_out): a supported candidate is named only when it also predicts
+///     tests left out of its fit better than the base refit does; the best supported one that passes wins.
 #include <optional>
 #include <ostream>
 #include <string>
@@ -55,6 +57,27 @@ struct DiagnoseOptions {
   /// effect), so the criterion is the same: an effect must beat it by strong_evidence. Slower (8 more
   /// parameters per candidate).
   bool joint_base = false;
+  /// Out-of-sample check of a supported candidate (leave-one-test-out, see HeldOutCheck): on by default.
+  bool held_out = true;
+  int held_out_iterations = 6;    ///< Ceres iterations per held-out refit (started from the full fit)
+  double held_out_margin = 10.0;  ///< held-out chi2 the candidate must save against the base refit [-]
+};
+
+/// Leave-one-test-out check of a candidate that the in-sample evidence supports. For each material-level test i
+/// with a noise estimate, the candidate (its effect parameters, and the base factors when it was fitted jointly)
+/// and the reference (the base refit, or the baseline as given when there is none) are refitted on the OTHER
+/// tests, each started from its full-campaign fit, and then predict test i: chi2_i is that prediction's sum of
+/// squared noise-normalised residuals. The candidate is confirmed when sum_i chi2_i falls below the reference's by
+/// held_out_margin: an effect that only absorbs the misfit of the tests it was fitted on does not predict the one
+/// left out any better than a refitted base.
+struct HeldOutCheck {
+  std::string candidate;
+  std::vector<std::string> tests;                         ///< held-out tests, in campaign order
+  std::vector<double> chi2_candidate, chi2_reference;     ///< held-out chi2 of each test [-]
+  double total_candidate = 0.0, total_reference = 0.0;    ///< sums over the held-out tests [-]
+  bool confirmed = false;
+  std::string failure;                                    ///< a refit or prediction failed (then not confirmed)
+  double seconds = 0.0;
 };
 
 struct CandidateFit {
@@ -85,6 +108,7 @@ struct Diagnosis {
   /// Reference fit: the base moduli (hyperfoam mu_i, Prony a_i) refitted WITHOUT any effect. An
   /// effect is supported only when its dBIC exceeds this one's by strong_evidence as well.
   std::optional<CandidateFit> base_refit;
+  std::vector<HeldOutCheck> held_out;      ///< the supported candidates checked out of sample, in rank order
   std::optional<std::size_t> winner;       ///< index into candidates
   bool winner_at_noise_level = false;
   std::string verdict;                     ///< one paragraph a person acts on

@@ -1,5 +1,6 @@
 #include "calibration/diagnose_output.hpp"
 
+#include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -30,6 +31,29 @@ nlohmann::json effects_json(const std::vector<material::EffectSpec>& effects) {
   return a;
 }
 
+/// The values as a JSON array, NaN/inf as null (JSON has no NaN).
+nlohmann::json finite_or_null(const std::vector<double>& v) {
+  nlohmann::json a = nlohmann::json::array();
+  for (double x : v) a.push_back(std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr));
+  return a;
+}
+
+/// The held-out table: per left-out test the chi2 of the candidate's and the reference's prediction.
+std::string held_out_markdown(const std::vector<HeldOutCheck>& checks) {
+  std::ostringstream o;
+  o << "\n## Out-of-sample check (leave one test out)\n\n"
+    << "Each test is left out in turn; the candidate and the reference (base refit) are refitted on the others and "
+       "predict it. chi2 = sum of squared noise-normalised residuals of that prediction.\n\n";
+  for (const auto& h : checks) {
+    o << "### " << h.candidate << ": " << (h.confirmed ? "confirmed" : "not confirmed")
+      << (h.failure.empty() ? "" : " (" + h.failure + ")") << "\n\n| left-out test | chi2 candidate | chi2 reference |\n|---|---|---|\n";
+    for (std::size_t i = 0; i < h.tests.size(); ++i)
+      o << "| " << h.tests[i] << " | " << fmt(h.chi2_candidate[i], 4) << " | " << fmt(h.chi2_reference[i], 4) << " |\n";
+    o << "| total | " << fmt(h.total_candidate, 4) << " | " << fmt(h.total_reference, 4) << " |\n\n";
+  }
+  return o.str();
+}
+
 }  // namespace
 
 nlohmann::json diagnosis_json(const Diagnosis& d) {
@@ -50,6 +74,11 @@ nlohmann::json diagnosis_json(const Diagnosis& d) {
                        {"chi2", d.base_refit->chi2}, {"converged", d.base_refit->converged},
                        {"delta_bic", std::isfinite(d.base_refit->delta_bic) ? nlohmann::json(d.base_refit->delta_bic)
                                                                             : nlohmann::json(nullptr)}};
+  j["held_out"] = nlohmann::json::array();
+  for (const auto& h : d.held_out)
+    j["held_out"].push_back({{"candidate", h.candidate}, {"tests", h.tests}, {"chi2_candidate", finite_or_null(h.chi2_candidate)},
+                             {"chi2_reference", finite_or_null(h.chi2_reference)}, {"confirmed", h.confirmed},
+                             {"failure", h.failure}, {"seconds", h.seconds}});
   j["candidates"] = nlohmann::json::array();
   for (std::size_t i = 0; i < d.candidates.size(); ++i) {
     const CandidateFit& c = d.candidates[i];
@@ -105,6 +134,7 @@ std::string diagnosis_markdown(const Diagnosis& d) {
     }
     o << "\n(per-test columns: RMS error / measurement noise; 1 = noise level)\n";
   }
+  if (!d.held_out.empty()) o << held_out_markdown(d.held_out);
   if (d.winner) {
     const CandidateFit& w = d.candidates[*d.winner];
     o << "\n## Error per test and region with " << w.name() << "\n\n" << compare_table(w.compare);

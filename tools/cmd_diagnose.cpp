@@ -1,7 +1,12 @@
-// `cushion diagnose MATERIAL.json CAMPAIGN.json -o DIR`: which effect of the catalogue is missing from a
+// `cushion diagnose [MATERIAL.json] CAMPAIGN.json -o DIR`: which effect of the catalogue is missing from a
 // calibrated material (ranked candidates, evidence, material-file fragment), calibration/diagnose.hpp.
+// Without MATERIAL.json (the default path, from raw test files) the base is calibrated first by the `cushion fit`
+// job into DIR/fit/, and every candidate is then fitted jointly with the base moduli (--joint-base), because a base
+// fitted on data that contain the effect has absorbed part of it.
 #include <filesystem>
 #include <iostream>
+#include <optional>
+#include <stdexcept>
 
 #include "calibration/campaign.hpp"
 #include "calibration/compare.hpp"
@@ -11,45 +16,78 @@
 #include "io/input_error.hpp"
 #include "material/io/material_file.hpp"
 #include "tools/command.hpp"
+#include "tools/fit_job.hpp"
 #include "tools/gnuplot.hpp"
 
 namespace {
 
+/// The base for a campaign given without a material: the `cushion fit` job with its defaults into OUT/fit
+/// (OUT prepared already). Returns the path of the material it wrote; throws std::runtime_error (exit 1) when
+/// the fit wrote none.
+std::string fit_base(const std::string& campaign_path, const std::filesystem::path& out) {
+  const std::filesystem::path fit_out = out / "fit";
+  std::cout << "diagnose: no material given: calibrating the base from the campaign (cushion fit -> " << fit_out.string()
+            << ")\n";
+  const auto result = cushion::tools::run_fit_job(campaign_path, cushion::calibration::FitOptions{}, fit_out, true);
+  const auto material = fit_out / "material.json";
+  if (!std::filesystem::exists(material))
+    throw std::runtime_error("diagnose: the fit of " + campaign_path + " gave no usable material (paper: " +
+                             result.paper_problem + "; refit: " + result.refit_problem + "); see " +
+                             (fit_out / "report.md").string());
+  return material.string();
+}
+
 struct DiagnoseCli {
-  std::string material, campaign;
+  std::vector<std::string> files;  // [material] campaign
   cushion::io::OutputFolder out;
   std::vector<std::string> candidates;
   int threads = 2;
   bool joint_base = false;
+  bool no_held_out = false;
 };
 
 const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
   auto opt = std::make_shared<DiagnoseCli>();
   CLI::App* sub = app.add_subcommand(
       "diagnose", "Name the physical effect missing from a calibrated material: refit each catalogue effect, rank by BIC");
-  sub->add_option("material", opt->material, "calibrated baseline material file (JSON)")->required();
-  sub->add_option("campaign", opt->campaign, "campaign manifest (JSON)")->required();
+  sub->add_option("files", opt->files,
+                  "[MATERIAL.json] CAMPAIGN.json: the campaign manifest, optionally after a calibrated base material; "
+                  "without one the base is fitted first (cushion fit, into OUTPUT/fit) and --joint-base is implied")
+      ->required()
+      ->expected(1, 2);
   cushion::tools::add_output_folder_options(sub, opt->out, "output folder (diagnosis.md, report.json, fragment.json, plots)");
   opt->out.markers = {"diagnosis.md"};
   sub->add_option("--candidates", opt->candidates, "only these effect kinds (default: the whole catalogue)")->delimiter(',');
   sub->add_flag("--joint-base", opt->joint_base,
                 "fit each effect together with the base moduli (for a baseline calibrated on data that contain it)");
+  sub->add_flag("--no-held-out", opt->no_held_out,
+                "name the best-supported effect without the leave-one-test-out check (faster; in-sample evidence only)");
   sub->add_option("--threads", opt->threads, "candidates fitted in parallel (default 2)")->check(CLI::Range(1, 2));
   sub->callback([opt] {
     using namespace cushion::calibration;
-    opt->out.inputs = {opt->material, opt->campaign};
+    const bool raw = opt->files.size() == 1;
+    opt->out.inputs.assign(opt->files.begin(), opt->files.end());
     cushion::io::check_output_folder(opt->out);
-    const auto def = cushion::material::read_material_file(opt->material);
-    const Campaign campaign = read_campaign(opt->campaign);
     DiagnoseOptions o;
     o.threads = opt->threads;
     o.candidates = opt->candidates;
-    o.joint_base = opt->joint_base;
+    o.joint_base = opt->joint_base || raw;
+    o.held_out = !opt->no_held_out;
     for (const auto& k : o.candidates)
       if (!cushion::material::find_effect(k)) throw cushion::InputError("--candidates: unknown effect kind '" + k + "'");
+    const std::string campaign_path = opt->files.back();
+    std::optional<cushion::material::MaterialDefinition> given;
+    if (!raw) given = cushion::material::read_material_file(opt->files.front());
+    const Campaign campaign = read_campaign(campaign_path);
+    if (raw) cushion::io::prepare_output_folder(opt->out);  // the fit writes into OUT/fit
+    const std::string material_path = raw ? fit_base(campaign_path, opt->out.dir) : opt->files.front();
+    const auto def = raw ? cushion::material::read_material_file(material_path) : *given;
     Diagnosis d = diagnose(def.spec, campaign, o, std::cout);
+    if (raw)
+      d.warnings.insert(d.warnings.begin(), "base material calibrated from this campaign by `cushion fit` (" +
+                                                material_path + "); every candidate fitted jointly with the base moduli");
     for (const auto& w : specimen_warnings(def.spec.density, campaign)) d.warnings.insert(d.warnings.begin(), w);
-    cushion::io::prepare_output_folder(opt->out);
+    if (!raw) cushion::io::prepare_output_folder(opt->out);
     write_diagnosis_outputs(d, opt->out.dir, cushion::tools::gnuplot_path());
     std::cout << "\n" << diagnosis_markdown(d) << "\ndiagnose: " << d.seconds << " s; written to " << opt->out.dir.string() << "\n";
   });

@@ -1,15 +1,12 @@
 // `cushion fit CAMPAIGN.json -o DIR`: the paper's identification method from test files to a material
 // (steps 1-6), the Prony conversion for the solver (7) and the consistency refit (8), with a report.
-#include <filesystem>
-#include <iostream>
 #include <sstream>
 
-#include "calibration/campaign.hpp"
-#include "calibration/fit_output.hpp"
 #include "calibration/fit_pipeline.hpp"
 #include "io/input_error.hpp"
+#include "io/output_folder.hpp"
 #include "tools/command.hpp"
-#include "tools/gnuplot.hpp"
+#include "tools/fit_job.hpp"
 
 namespace {
 
@@ -81,21 +78,7 @@ const cushion::tools::Registrar reg{"fit", [](CLI::App& app) {
     o.default_material = opt->default_material == "paper" ? DefaultMaterial::paper : DefaultMaterial::refit;
     o.normalisation = opt->normalisation == "paper" ? PronyNormalisation::paper : PronyNormalisation::tangent;
 
-    cushion::io::check_output_folder(fit_output_folder(opt->out.dir, opt->out.overwrite, opt->campaign));
-    const Campaign campaign = read_campaign(opt->campaign);
-    std::cout << "fit: " << opt->campaign << ": " << campaign.quasi_static.size() << " quasi-static and " << campaign.dynamic.size()
-              << " dynamic test(s)\n";
-    const FitResult result = fit_pipeline(campaign, o, std::cout);
-    const auto plots = write_fit_outputs(result, campaign, opt->out.dir, cushion::tools::gnuplot_path(), std::cout);
-    std::cout << "fit: default material (" << (result.default_choice == DefaultMaterial::refit ? "refit" : "paper")
-              << "): " << result.default_reason << "\n";
-    std::cout << "fit: outputs in " << opt->out.dir.string() << "/ :";
-    for (const char* f : {"material.json", "material_paper.json", "material_refit.json", "abaqus_paper.inp",
-                          "abaqus_refit.inp", "report.md", "report.json"})
-      if (std::filesystem::exists(opt->out.dir / f)) std::cout << " " << f;
-    std::size_t drawn = 0;
-    for (const auto& p : plots) drawn += p.drawn;
-    std::cout << ", " << plots.size() << " plots (" << drawn << " PNG drawn)\n";
+    cushion::tools::run_fit_job(opt->campaign, o, opt->out.dir, opt->out.overwrite);
   });
 }};
 

@@ -2,9 +2,11 @@
 // base material plus ONE effect, 0.5% + 0.002 N noise) and on a control with none. The model side is the
 // base material (the base calibration assumed right). For each effect: the baseline fails beyond noise,
 // diagnose ranks the hidden effect first (alone or as the leading member of the winning candidate), and
-// with the fitted effect every test is within 1.5x its noise. Control: "no effect is missing".
+// with the fitted effect every test is within 1.5x its noise, and the winner predicts each test left out of
+// its fit better than the base refit (held-out check). Control: "no effect is missing".
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <sstream>
 
 #include "calibration/diagnose.hpp"
@@ -50,6 +52,15 @@ TEST_P(HiddenEffect, RankedFirstAndErrorFallsToNoise) {
   for (const auto& t : w.compare.tests) EXPECT_LE(t.noise_ratio(), 1.5) << t.name;
   EXPECT_TRUE(d.winner_at_noise_level);
   EXPECT_TRUE(d.fragment.contains("effects"));
+  // Out of sample: the winner, refitted without each test in turn, predicts that test better than the base
+  // refit does (the check that named it is the last one made).
+  ASSERT_FALSE(d.held_out.empty());
+  const cc::HeldOutCheck& h = d.held_out.back();
+  EXPECT_EQ(h.candidate, w.name());
+  EXPECT_TRUE(h.confirmed) << h.failure;
+  EXPECT_EQ(h.tests.size(), d.baseline.tests.size());
+  for (std::size_t i = 0; i < h.tests.size(); ++i) EXPECT_TRUE(std::isfinite(h.chi2_candidate[i])) << h.tests[i];
+  EXPECT_LT(h.total_candidate, h.total_reference - 10.0);
 }
 
 INSTANTIATE_TEST_SUITE_P(Catalogue, HiddenEffect,

@@ -119,3 +119,17 @@ TEST(CliDiagnose, JointBaseNamesTheEffectAndWritesTheRefittedMaterial) {
   EXPECT_TRUE(fs::exists(dir / "out" / "material_extended.json"));
   EXPECT_TRUE(fs::exists(dir / "out" / "fragment.json"));
 }
+
+// From raw test files: no material given, so the base is calibrated first (the fit job into OUT/fit) and the
+// candidate is fitted jointly with it; the hidden friction of the campaign is still named.
+TEST(CliDiagnose, RawCampaignIsCalibratedFirstAndTheEffectNamed) {
+  const fs::path dir = scratch() / "raw";
+  const CommandRun r = run_cushion("diagnose " + quoted(hidden() / "campaign_friction" / "campaign.json") + " -o " +
+                                   quoted(dir / "out") + " --candidates friction");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("calibrating the base from the campaign"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(dir / "out" / "fit" / "material.json"));
+  EXPECT_TRUE(fs::exists(dir / "out" / "fit" / "report.md"));
+  EXPECT_NE(r.output.find("Add friction"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(dir / "out" / "material_extended.json"));
+}
