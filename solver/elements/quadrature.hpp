@@ -31,7 +31,8 @@ struct QuadraturePoint {
 
 /// Rule for internal force and stiffness: hex8 2x2x2 Gauss, tet4 1 point, tet10 4 points (degree 2),
 /// hex20 (C3D20) 3x3x3 Gauss (full integration), hex20r (C3D20R) 2x2x2 Gauss (reduced integration,
-/// as ABAQUS and CalculiX; no hourglass control: its spurious modes do not propagate through a mesh).
+/// as ABAQUS and CalculiX; no hourglass control: a single element has 6 spurious zero-energy modes, a
+/// column one element wide 5, a mesh two elements wide in two directions none; tests/solver/test_hex20.cpp).
 const std::vector<QuadraturePoint>& stiffness_quadrature(mesh::ElementType type);
 
 /// Rule for the consistent mass matrix: hex8 3x3x3 Gauss; hex20/hex20r 4x4x4 Gauss (N_a N_b has

@@ -21,6 +21,8 @@
 #include <cstdio>
 
 #include "mesh/inp_reader.hpp"
+#include "mesh/selectors.hpp"
+#include "solver/contact/contact_set.hpp"
 #include "solver/equilibrium.hpp"
 #include "solver/output/vtu_reader.hpp"
 #include "tests/solver/solver_fixtures.hpp"
@@ -131,6 +133,21 @@ TEST(Hex20Solver, CantileverConvergesFasterThanHex8) {
     EXPECT_LT(std::abs(error[t][1]), 0.01) << mesh::to_string(types[t]);
     for (int k = t == 2 ? 1 : 0; k < 3; ++k) EXPECT_GT(std::abs(error[0][k]), 10.0 * std::abs(error[t][k])) << k;
   }
+}
+
+// Contact areas on 8-node faces: the top face nodes of a 2 x 2 x 2 C3D20R block of [0,2]^3 (21 nodes)
+// share the 4 mm^2 exactly, every node a positive part (1e-14).
+TEST(Hex20Solver, ContactAreasOfQuadraticFaces) {
+  const mesh::Mesh m = box(mesh::ElementType::hex20r, 2, 2, 2);
+  const std::vector<int> top = mesh::select_nodes(m, mesh::parse_selector("z == 2", "test"));
+  ASSERT_EQ(top.size(), 21u);
+  const std::vector<double> areas = tributary_areas(m, top);
+  double sum = 0.0;
+  for (double a : areas) {
+    EXPECT_GT(a, 0.0);
+    sum += a;
+  }
+  EXPECT_NEAR(sum, 4.0, 1e-14);
 }
 
 TEST(Hex20Solver, RunFromC3D20RDeckToVtk) {

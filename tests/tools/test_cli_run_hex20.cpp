@@ -54,11 +54,12 @@ fs::path write_case(const fs::path& dir, bool complete) {
   return dir / "case.json";
 }
 
-// Last value of column `name` of a CSV file.
+// Last value of column `name` of a CSV file ('#' comment lines first).
 double last_value(const fs::path& csv, const std::string& name) {
   std::ifstream in(csv);
   std::string header, line, last;
-  std::getline(in, header);
+  while (std::getline(in, header) && header.rfind('#', 0) == 0) {
+  }
   while (std::getline(in, line))
     if (!line.empty()) last = line;
   std::stringstream h(header), v(last);
