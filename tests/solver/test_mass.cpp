@@ -1,6 +1,6 @@
 // Requirement: the consistent mass matrix carries the body's mass and inertia of rigid translation.
-// Checks: for hex8, tet4, tet10, hex20, hex20r (interior nodes distorted, quadratic elements curved): element volumes sum to the
-// cube's 8 mm^3 (1e-12); sum of the entries of each direction
+// Checks: for hex8, tet4, tet10, hex20, hex20r (interior nodes distorted, quadratic elements
+// curved): element volumes sum to the cube's 8 mm^3 (1e-12); sum of the entries of each direction
 // block = rho V to 1e-12 relative, with V from the element volumes; M times a unit rigid
 // translation gives nodal forces summing to rho V in that direction and 0 in the others (1e-12);
 // the tet4 element matrix equals the closed form rho V / 20 (1 + delta_ab) to 1e-14 relative;
