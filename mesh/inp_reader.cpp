@@ -228,15 +228,14 @@ class Reader {
   }
 
   void element(const Block& block) {
-    static const std::map<std::string, ElementType> types = {{"C3D8", ElementType::hex8},
-                                                             {"C3D8R", ElementType::hex8},
-                                                             {"C3D4", ElementType::tet4},
-                                                             {"C3D10", ElementType::tet10}};
+    static const std::map<std::string, ElementType> types = {
+        {"C3D8", ElementType::hex8},   {"C3D8R", ElementType::hex8},    {"C3D4", ElementType::tet4},
+        {"C3D10", ElementType::tet10}, {"C3D20", ElementType::hex20}, {"C3D20R", ElementType::hex20r}};
     const std::string type_name = upper(required(block, "TYPE"));
     const auto type = types.find(type_name);
     if (type == types.end())
       fail(block.keyword, block.name,
-           "unknown TYPE=" + type_name + " (supported: C3D8, C3D8R, C3D4, C3D10)");
+           "unknown TYPE=" + type_name + " (supported: C3D8, C3D8R, C3D4, C3D10, C3D20, C3D20R)");
     if (type_name == "C3D8R" && notes_)
       notes_->push_back(block.keyword.file + ":" + std::to_string(block.keyword.number) +
                         ": C3D8R read as C3D8 (hex8); the solver chooses the integration rule");
@@ -248,9 +247,12 @@ class Reader {
     const Line* first = nullptr;
     for (const Line& line : block.data) {
       if (!first) first = &line;
-      for (auto& f : fields(line.text)) pending.push_back(f);
-      // ABAQUS continues an element on the next line when the line ends with a comma.
-      if (static_cast<int>(pending.size()) < n + 1 && ends_with_comma(line.text)) continue;
+      const std::vector<std::string> line_fields = fields(line.text);
+      pending.insert(pending.end(), line_fields.begin(), line_fields.end());
+      // ABAQUS continues an element on the next line when the line ends with a comma or is full
+      // (16 entries: label and 15 nodes of a C3D20, as some writers omit the comma).
+      const bool full_line = line_fields.size() == 16;
+      if (static_cast<int>(pending.size()) < n + 1 && (ends_with_comma(line.text) || full_line)) continue;
       if (static_cast<int>(pending.size()) != n + 1)
         fail(line, block.name, type_name + " needs a label and " + std::to_string(n) +
                                    " nodes, got " + std::to_string(pending.size()) + " fields");

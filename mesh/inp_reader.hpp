@@ -1,6 +1,7 @@
 #pragma once
 /// ABAQUS/CalculiX .inp mesh input and output. Supported keywords: *NODE (NSET=), *ELEMENT
-/// (TYPE=C3D8, C3D8R, C3D4, C3D10; ELSET=), *NSET / *ELSET (NSET= / ELSET=, GENERATE, members by
+/// (TYPE=C3D8, C3D8R, C3D4, C3D10, C3D20, C3D20R; ELSET=; an element continues on the next line
+/// after a line ending in a comma or holding 16 entries), *NSET / *ELSET (NSET= / ELSET=, GENERATE, members by
 /// label or set name, *NSET with ELSET= taking the nodes of an element set), *SURFACE (TYPE=ELEMENT,
 /// NAME=; lines "elset or label, Sn", Sn omitted = exterior faces of the set), *INCLUDE (INPUT=, path
 /// relative to the including file). Other keywords (*HEADING, *MATERIAL, *STEP ...) are skipped,
@@ -28,7 +29,8 @@ Mesh parse_inp(const std::string& text, const std::string& name,
                std::vector<std::string>* notes = nullptr);
 
 /// Writes nodes, elements (grouped by type), node sets, element sets and element surfaces with the
-/// mesh's labels, full double precision, at most 16 entries per data line.
+/// mesh's labels, full double precision, at most 16 entries per data line (a C3D20 element takes
+/// two lines, the first ending in a comma).
 void write_inp(const Mesh& mesh, std::ostream& out);
 void write_inp(const Mesh& mesh, const std::string& path);
 

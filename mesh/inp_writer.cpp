@@ -7,10 +7,11 @@
 namespace cushion::mesh {
 namespace {
 
-// Writes labels 16 per line, comma separated.
-void write_labels(std::ostream& out, const std::vector<int>& labels) {
+// Writes labels 16 per line, comma separated; `continued`: a broken line ends in a comma (one
+// record over several lines, as an element's label and nodes).
+void write_labels(std::ostream& out, const std::vector<int>& labels, bool continued = false) {
   for (std::size_t i = 0; i < labels.size(); ++i)
-    out << labels[i] << (i + 1 == labels.size() || i % 16 == 15 ? "\n" : ", ");
+    out << labels[i] << (i + 1 == labels.size() ? "\n" : i % 16 == 15 ? (continued ? ",\n" : "\n") : ", ");
 }
 
 }  // namespace
@@ -25,10 +26,9 @@ void write_inp(const Mesh& mesh, std::ostream& out) {
     const Element& element = mesh.elements[e];
     if (e == 0 || mesh.elements[e - 1].type != element.type)
       out << "*ELEMENT, TYPE=" << to_string(element.type) << "\n";
-    out << element.label;
-    for (int a = 0; a < nodes_per_element(element.type); ++a)
-      out << ", " << mesh.node_labels[element.nodes[a]];
-    out << "\n";
+    std::vector<int> record{element.label};
+    for (int a = 0; a < nodes_per_element(element.type); ++a) record.push_back(mesh.node_labels[element.nodes[a]]);
+    write_labels(out, record, true);
   }
   for (const auto& [name, nodes] : mesh.node_sets) {
     if (nodes.empty()) continue;  // ABAQUS rejects empty sets

@@ -60,33 +60,63 @@ int nodes_per_element(ElementType type) {
     case ElementType::hex8: return 8;
     case ElementType::tet4: return 4;
     case ElementType::tet10: return 10;
+    case ElementType::hex20:
+    case ElementType::hex20r: return 20;
   }
   throw std::logic_error("nodes_per_element: unknown element type");
 }
 
-int faces_per_element(ElementType type) { return type == ElementType::hex8 ? 6 : 4; }
+bool is_hexahedron(ElementType type) {
+  return type == ElementType::hex8 || type == ElementType::hex20 || type == ElementType::hex20r;
+}
+
+int faces_per_element(ElementType type) { return is_hexahedron(type) ? 6 : 4; }
+int corners_per_face(ElementType type) { return is_hexahedron(type) ? 4 : 3; }
+int corners_per_element(ElementType type) { return is_hexahedron(type) ? 8 : 4; }
 
 std::string to_string(ElementType type) {
   switch (type) {
     case ElementType::hex8: return "C3D8";
     case ElementType::tet4: return "C3D4";
     case ElementType::tet10: return "C3D10";
+    case ElementType::hex20: return "C3D20";
+    case ElementType::hex20r: return "C3D20R";
   }
   throw std::logic_error("to_string: unknown element type");
 }
 
+const std::vector<std::array<int, 2>>& mid_edge_corners(ElementType type) {
+  // C3D10 nodes 5..10 on edges 1-2, 2-3, 3-1, 1-4, 2-4, 3-4; C3D20 nodes 9..20 on edges 1-2, 2-3,
+  // 3-4, 4-1, 5-6, 6-7, 7-8, 8-5, 1-5, 2-6, 3-7, 4-8 (0-based below).
+  static const std::vector<std::array<int, 2>> none, tet10 = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
+  static const std::vector<std::array<int, 2>> hex20 = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
+                                                        {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+  if (type == ElementType::tet10) return tet10;
+  if (type == ElementType::hex20 || type == ElementType::hex20r) return hex20;
+  return none;
+}
+
 std::vector<int> face_nodes(ElementType type, int face) {
   // ABAQUS face tables (S1..S6 / S1..S4) with the node order reversed after the first node so that
-  // the right-hand rule gives the outward normal; see mesh.hpp.
+  // the right-hand rule gives the outward normal; see mesh.hpp. The mid-edge nodes of a quadratic
+  // face follow its corners, node k + corners on the edge between corners k and k + 1.
   static const std::vector<std::vector<int>> hex = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
                                                     {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  static const std::vector<std::vector<int>> hex20 = {
+      {0, 3, 2, 1, 11, 10, 9, 8},    {4, 5, 6, 7, 12, 13, 14, 15},  {0, 1, 5, 4, 8, 17, 12, 16},
+      {1, 2, 6, 5, 9, 18, 13, 17},   {2, 3, 7, 6, 10, 19, 14, 18},  {3, 0, 4, 7, 11, 16, 15, 19}};
   static const std::vector<std::vector<int>> tet10 = {
       {0, 2, 1, 6, 5, 4}, {0, 1, 3, 4, 8, 7}, {1, 2, 3, 5, 9, 8}, {2, 0, 3, 6, 7, 9}};
   if (face < 0 || face >= faces_per_element(type))
     throw std::out_of_range("face_nodes: face " + std::to_string(face) + " out of range for " +
                             to_string(type));
-  if (type == ElementType::hex8) return hex[face];
-  if (type == ElementType::tet10) return tet10[face];
+  switch (type) {
+    case ElementType::hex8: return hex[face];
+    case ElementType::hex20:
+    case ElementType::hex20r: return hex20[face];
+    case ElementType::tet10: return tet10[face];
+    case ElementType::tet4: break;
+  }
   const auto& f = tet10[face];
   return {f[0], f[1], f[2]};
 }
@@ -102,7 +132,7 @@ std::vector<Face> boundary_faces(const Mesh& mesh) {
     const Element& element = mesh.elements[e];
     for (int f = 0; f < faces_per_element(element.type); ++f) {
       const std::vector<int> local = face_nodes(element.type, f);
-      const int corners = element.type == ElementType::hex8 ? 4 : 3;
+      const int corners = corners_per_face(element.type);
       constexpr int kPad = std::numeric_limits<int>::max();
       std::array<int, 4> key{kPad, kPad, kPad, kPad};
       for (int k = 0; k < corners; ++k) key[k] = element.nodes[local[k]];
@@ -120,15 +150,26 @@ std::vector<Face> boundary_faces(const Mesh& mesh) {
   return result;
 }
 
+double face_area(const Mesh& mesh, const Face& face) {
+  const Element& element = mesh.elements.at(face.element);
+  const std::vector<int> local = face_nodes(element.type, face.face);
+  auto X = [&](int k) -> const Vec3& { return mesh.nodes[element.nodes[local[k]]]; };
+  if (corners_per_face(element.type) == 4) return 0.5 * (X(2) - X(0)).cross(X(3) - X(1)).norm();
+  return 0.5 * (X(1) - X(0)).cross(X(2) - X(0)).norm();
+}
+
 double element_volume(const Mesh& mesh, int e) {
   const ElementType type = mesh.elements.at(e).type;
   double volume = 0.0;
-  if (type == ElementType::hex8) {
-    // det J of a trilinear map has degree <= 2 per direction: 2x2x2 Gauss is exact.
-    const double g = 1.0 / std::sqrt(3.0);
-    for (double a : {-g, g})
-      for (double b : {-g, g})
-        for (double c : {-g, g}) volume += reference_jacobian(mesh, e, Vec3(a, b, c)).determinant();
+  if (is_hexahedron(type)) {
+    // det J of a trilinear map (hex8) has degree <= 2 per direction: 2-point Gauss is exact. For
+    // the serendipity map (hex20) dX/dxi_k has degree <= 1 in xi_k and <= 2 in the others, so
+    // det J has degree <= 5 per direction: 3-point Gauss is exact.
+    const auto rule = gauss_legendre(type == ElementType::hex8 ? 2 : 3);
+    for (const auto& a : rule)
+      for (const auto& b : rule)
+        for (const auto& c : rule)
+          volume += a[1] * b[1] * c[1] * reference_jacobian(mesh, e, Vec3(a[0], b[0], c[0])).determinant();
     return volume;
   }
   if (type == ElementType::tet4)

@@ -169,7 +169,7 @@ std::vector<Face> surface_from_node_set(const Mesh& mesh, const std::vector<int>
   std::vector<Face> surface;
   for (const Face& face : boundary_faces(mesh)) {
     const Element& element = mesh.elements[face.element];
-    const int corners = element.type == ElementType::hex8 ? 4 : 3;
+    const int corners = corners_per_face(element.type);
     const std::vector<int> local = face_nodes(element.type, face.face);
     bool all = true;
     for (int k = 0; k < corners && all; ++k) all = member[element.nodes[local[k]]] != 0;

@@ -143,7 +143,7 @@ Mesh tetgen_surface(const TriangleSurface& surface, const TetgenOptions& options
 double max_radius_edge_ratio(const Mesh& mesh) {
   double worst = 0.0;
   for (const Element& element : mesh.elements) {
-    if (element.type == ElementType::hex8) continue;
+    if (is_hexahedron(element.type)) continue;
     const Vec3& x0 = mesh.nodes[element.nodes[0]];
     const Vec3 a = mesh.nodes[element.nodes[1]] - x0, b = mesh.nodes[element.nodes[2]] - x0,
                c = mesh.nodes[element.nodes[3]] - x0;

@@ -79,12 +79,12 @@ double integrate_face(const std::vector<Vec3>& y, const Weight& weight) {
 std::vector<double> tributary_areas(const mesh::Mesh& mesh, const std::vector<int>& nodes) {
   std::vector<double> per_node(mesh.num_nodes(), 0.0);
   for (const mesh::Face& f : mesh::surface_from_node_set(mesh, nodes)) {
+    // The face area is shared equally by all its nodes (corners and, on quadratic faces, mid-edge
+    // nodes): a positive lumping, unlike the consistent loads of a quadratic face (zero at tet10
+    // corners, negative at hex20 corners), which would pull corner nodes into the indenter.
     const mesh::Element& el = mesh.elements[f.element];
     const std::vector<int> local = mesh::face_nodes(el.type, f.face);
-    auto X = [&](int k) -> const Vec3& { return mesh.nodes[el.nodes[local[k]]]; };
-    // Quad: half the cross product of the diagonals (exact for planar quads); triangle: corners.
-    const double area = el.type == mesh::ElementType::hex8 ? 0.5 * (X(2) - X(0)).cross(X(3) - X(1)).norm()
-                                                            : 0.5 * (X(1) - X(0)).cross(X(2) - X(0)).norm();
+    const double area = mesh::face_area(mesh, f);
     for (int k : local) per_node[el.nodes[k]] += area / static_cast<double>(local.size());
   }
   std::vector<double> out;

@@ -149,7 +149,9 @@ class ContactSet {
 
 /// Tributary areas [mm^2] of the given nodes: each exterior face whose nodes all belong to the set
 /// (mesh::surface_from_node_set) gives an equal share of its reference area to each of its nodes
-/// (the consistent nodal load of a uniform pressure on parallelograms and linear triangles).
+/// (the consistent nodal load of a uniform pressure on parallelograms and linear triangles; on the
+/// quadratic faces of tet10 and hex20 a positive lumping over corner and mid-edge nodes, since the
+/// consistent loads are zero or negative at the corners).
 std::vector<double> tributary_areas(const mesh::Mesh& mesh, const std::vector<int>& nodes);
 
 }  // namespace cushion::solver

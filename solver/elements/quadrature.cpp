@@ -11,24 +11,7 @@ namespace {
 
 using mesh::ElementType;
 
-// n-point Gauss-Legendre rule on [-1, 1]: {abscissa, weight}.
-std::vector<std::array<double, 2>> gauss_legendre(int n) {
-  if (n == 2) {
-    const double a = 1.0 / std::sqrt(3.0);
-    return {{-a, 1.0}, {a, 1.0}};
-  }
-  if (n == 3) {
-    const double a = std::sqrt(0.6);
-    return {{-a, 5.0 / 9.0}, {0.0, 8.0 / 9.0}, {a, 5.0 / 9.0}};
-  }
-  if (n == 4) {
-    const double a = std::sqrt(3.0 / 7.0 - 2.0 / 7.0 * std::sqrt(6.0 / 5.0));
-    const double b = std::sqrt(3.0 / 7.0 + 2.0 / 7.0 * std::sqrt(6.0 / 5.0));
-    const double wa = (18.0 + std::sqrt(30.0)) / 36.0, wb = (18.0 - std::sqrt(30.0)) / 36.0;
-    return {{-b, wb}, {-a, wa}, {a, wa}, {b, wb}};
-  }
-  throw std::invalid_argument("gauss_legendre: unsupported order");
-}
+using mesh::gauss_legendre;
 
 QuadraturePoint tabulate(ElementType type, const Vec3& xi, double weight) {
   QuadraturePoint p;
@@ -39,12 +22,13 @@ QuadraturePoint tabulate(ElementType type, const Vec3& xi, double weight) {
   return p;
 }
 
-std::vector<QuadraturePoint> hex_product_rule(int n) {
+// n x n x n Gauss product rule on [-1, 1]^3, xi fastest.
+std::vector<QuadraturePoint> hex_product_rule(ElementType type, int n) {
   std::vector<QuadraturePoint> rule;
   const auto g = gauss_legendre(n);
   for (const auto& c : g)
     for (const auto& b : g)
-      for (const auto& a : g) rule.push_back(tabulate(ElementType::hex8, Vec3(a[0], b[0], c[0]), a[1] * b[1] * c[1]));
+      for (const auto& a : g) rule.push_back(tabulate(type, Vec3(a[0], b[0], c[0]), a[1] * b[1] * c[1]));
   return rule;
 }
 
@@ -73,25 +57,32 @@ std::vector<QuadraturePoint> tet_four_point_rule(ElementType type) {
 }  // namespace
 
 const std::vector<QuadraturePoint>& stiffness_quadrature(ElementType type) {
-  static const std::vector<QuadraturePoint> hex8 = hex_product_rule(2);
+  static const std::vector<QuadraturePoint> hex8 = hex_product_rule(ElementType::hex8, 2);
   static const std::vector<QuadraturePoint> tet4 = {tabulate(ElementType::tet4, Vec3::Constant(0.25), 1.0 / 6.0)};
   static const std::vector<QuadraturePoint> tet10 = tet_four_point_rule(ElementType::tet10);
+  static const std::vector<QuadraturePoint> hex20 = hex_product_rule(ElementType::hex20, 3);
+  static const std::vector<QuadraturePoint> hex20r = hex_product_rule(ElementType::hex20r, 2);
   switch (type) {
     case ElementType::hex8: return hex8;
     case ElementType::tet4: return tet4;
     case ElementType::tet10: return tet10;
+    case ElementType::hex20: return hex20;
+    case ElementType::hex20r: return hex20r;
   }
   throw std::invalid_argument("stiffness_quadrature: unknown element type");
 }
 
 const std::vector<QuadraturePoint>& mass_quadrature(ElementType type) {
-  static const std::vector<QuadraturePoint> hex8 = hex_product_rule(3);
+  static const std::vector<QuadraturePoint> hex8 = hex_product_rule(ElementType::hex8, 3);
   static const std::vector<QuadraturePoint> tet4 = tet_collapsed_rule(ElementType::tet4, 4);
   static const std::vector<QuadraturePoint> tet10 = tet_collapsed_rule(ElementType::tet10, 4);
+  static const std::vector<QuadraturePoint> hex20 = hex_product_rule(ElementType::hex20, 4);
   switch (type) {
     case ElementType::hex8: return hex8;
     case ElementType::tet4: return tet4;
     case ElementType::tet10: return tet10;
+    case ElementType::hex20:
+    case ElementType::hex20r: return hex20;
   }
   throw std::invalid_argument("mass_quadrature: unknown element type");
 }
@@ -100,10 +91,13 @@ const QuadraturePoint& centre_point(ElementType type) {
   static const QuadraturePoint hex8 = tabulate(ElementType::hex8, Vec3::Zero(), 0.0);
   static const QuadraturePoint tet4 = tabulate(ElementType::tet4, Vec3::Constant(0.25), 0.0);
   static const QuadraturePoint tet10 = tabulate(ElementType::tet10, Vec3::Constant(0.25), 0.0);
+  static const QuadraturePoint hex20 = tabulate(ElementType::hex20, Vec3::Zero(), 0.0);
   switch (type) {
     case ElementType::hex8: return hex8;
     case ElementType::tet4: return tet4;
     case ElementType::tet10: return tet10;
+    case ElementType::hex20:
+    case ElementType::hex20r: return hex20;
   }
   throw std::invalid_argument("centre_point: unknown element type");
 }

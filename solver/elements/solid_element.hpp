@@ -1,5 +1,6 @@
 #pragma once
-/// Total-Lagrangian solid element kernels (hex8, hex8 F-bar, tet4, tet10). A kernel knows nothing of
+/// Total-Lagrangian solid element kernels (hex8, hex8 F-bar, tet4, tet10, hex20 = C3D20 with 3x3x3
+/// and hex20r = C3D20R with 2x2x2 Gauss points; the rule comes with the element type). A kernel knows nothing of
 /// assembly: it maps reference coordinates, nodal displacements, a material and the committed
 /// quadrature-point state to the internal force and its consistent tangent. Element DOF order is
 /// node-major: dof 3a + i is component i of node a.

@@ -94,6 +94,8 @@ int vtk_cell_type(mesh::ElementType type) {
     case mesh::ElementType::hex8: return VTK_HEXAHEDRON;
     case mesh::ElementType::tet4: return VTK_TETRA;
     case mesh::ElementType::tet10: return VTK_QUADRATIC_TETRA;
+    case mesh::ElementType::hex20:
+    case mesh::ElementType::hex20r: return VTK_QUADRATIC_HEXAHEDRON;
   }
   throw std::logic_error("vtk_cell_type: unknown element type");
 }
@@ -118,9 +120,11 @@ void write_vtu(const std::filesystem::path& file, const mesh::Mesh& mesh, const 
   grid->SetPoints(points);
   grid->Allocate(static_cast<vtkIdType>(ne));
   for (const mesh::Element& e : mesh.elements) {
-    // C3D8, C3D4 and C3D10 node orders are those of VTK's hexahedron, tetra and quadratic tetra.
+    // C3D8, C3D4, C3D10 and C3D20(R) node orders are those of VTK's hexahedron, tetra, quadratic
+    // tetra and quadratic hexahedron (mid-edge nodes on (0,1), (1,2), (2,3), (3,0), (4,5), (5,6),
+    // (6,7), (7,4), (0,4), (1,5), (2,6), (3,7): vtkQuadraticHexahedron.h).
     const int n = mesh::nodes_per_element(e.type);
-    vtkIdType ids[10];
+    vtkIdType ids[20];
     for (int a = 0; a < n; ++a) ids[a] = e.nodes[a];
     grid->InsertNextCell(vtk_cell_type(e.type), n, ids);
   }

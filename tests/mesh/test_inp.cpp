@@ -248,8 +248,8 @@ TEST(InpReader, IncludeFile) {
 TEST(InpReader, MalformedDecksNameTheLine) {
   EXPECT_EQ(error_of(replace(kDeck, "2, 1, 0, 0\n", "2, 1, 0x, 0\n")),
             "model.inp:6: *NODE: bad number '0x'");
-  EXPECT_EQ(error_of(replace(kDeck, "TYPE=C3D10,", "TYPE=C3D20R,")),
-            "model.inp:34: *ELEMENT: unknown TYPE=C3D20R (supported: C3D8, C3D8R, C3D4, C3D10)");
+  EXPECT_EQ(error_of(replace(kDeck, "TYPE=C3D10,", "TYPE=C3D15,")),
+            "model.inp:34: *ELEMENT: unknown TYPE=C3D15 (supported: C3D8, C3D8R, C3D4, C3D10, C3D20, C3D20R)");
   EXPECT_EQ(error_of(replace(kDeck, "21, 101, 102, 103, 104", "21, 101, 102, 103, 999")),
             "model.inp:33: *ELEMENT: undefined node label 999");
   EXPECT_EQ(error_of(replace(kDeck, "1, 11, 2\n", "11, 1, 2\n")),

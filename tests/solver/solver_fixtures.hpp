@@ -13,24 +13,27 @@
 
 namespace cushion::solver::test {
 
-/// Block [0,2]^3 mm cut into n^3 hex8 (or 6 n^3 tet4 or tet10), every node moved randomly by up to
-/// `distortion` times the element size. tet10 stays straight-sided (mid-edge nodes at the midpoints
-/// of the distorted edges) unless `curved_tet10`, which moves the mid-edge nodes as well.
-inline mesh::Mesh distorted_block(mesh::ElementType type, int n, double distortion, bool curved_tet10 = false,
+/// Block [0,2]^3 mm cut into n^3 hex8 / hex20 / hex20r (or 6 n^3 tet4 or tet10), every corner node
+/// moved randomly by up to `distortion` times the element size. Quadratic elements stay
+/// straight-sided (mid-edge nodes at the midpoints of the distorted edges) unless `curved`, which
+/// moves the mid-edge nodes as well.
+inline mesh::Mesh distorted_block(mesh::ElementType type, int n, double distortion, bool curved = false,
                                   unsigned seed = 7) {
   mesh::BlockSpec spec;
   spec.low = Vec3::Zero();
   spec.high = Vec3::Constant(2.0);
   spec.n = {n, n, n};
-  spec.type = type == mesh::ElementType::hex8 ? mesh::ElementType::hex8 : mesh::ElementType::tet4;
+  spec.type = mesh::is_hexahedron(type) ? mesh::ElementType::hex8 : mesh::ElementType::tet4;
   mesh::Mesh m = mesh::structured_block(spec);
+  const bool quadratic = type == mesh::ElementType::tet10 || type == mesh::ElementType::hex20 ||
+                         type == mesh::ElementType::hex20r;
+  auto make_quadratic = [&] { m = type == mesh::ElementType::tet10 ? mesh::to_tet10(m) : mesh::to_hex20(m, type); };
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   const double h = 2.0 / n;
-  const bool curved = type == mesh::ElementType::tet10 && curved_tet10;
-  if (type == mesh::ElementType::tet10 && curved) m = mesh::to_tet10(m);
+  if (quadratic && curved) make_quadratic();
   for (auto& X : m.nodes) X += distortion * h * Vec3(u(rng), u(rng), u(rng));
-  if (type == mesh::ElementType::tet10 && !curved) m = mesh::to_tet10(m);
+  if (quadratic && !curved) make_quadratic();
   return m;
 }
 

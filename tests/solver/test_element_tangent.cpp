@@ -1,8 +1,9 @@
 // Requirement: every element kernel's tangent equals the derivative of its internal force.
 // Check: K from integrate_element vs a central finite difference of f_int (step 1e-6 mm on 2 mm
-// elements), max |K - K_fd| <= 1e-6 max |K|, for hex8, hex8 F-bar, tet4 and tet10 on distorted
-// elements under a general non-homogeneous deformation, with NeoHookean, Hyperfoam and Hyperfoam +
-// Prony (dt > 0 from a non-trivial history).
+// elements), max |K - K_fd| <= 1e-6 max |K|, for hex8, hex8 F-bar, tet4, tet10, hex20 (C3D20) and
+// hex20r (C3D20R) on distorted (quadratic: curved) elements under a general non-homogeneous
+// deformation (det F ~ 0.8, finite strain), with NeoHookean, Hyperfoam and Hyperfoam + Prony (dt > 0
+// from a non-trivial history).
 #include <gtest/gtest.h>
 
 #include "tests/solver/solver_fixtures.hpp"
@@ -19,7 +20,9 @@ struct Case {
 const Case cases[] = {{mesh::ElementType::hex8, Formulation::full, "hex8"},
                       {mesh::ElementType::hex8, Formulation::fbar, "hex8 F-bar"},
                       {mesh::ElementType::tet4, Formulation::full, "tet4"},
-                      {mesh::ElementType::tet10, Formulation::full, "tet10"}};
+                      {mesh::ElementType::tet10, Formulation::full, "tet10"},
+                      {mesh::ElementType::hex20, Formulation::full, "hex20"},
+                      {mesh::ElementType::hex20r, Formulation::full, "hex20r"}};
 
 /// u = (F - I) X + noise [mm] at the element nodes.
 NodeMatrix deformation(const NodeMatrix& X, const Mat3& F, double noise, std::mt19937& rng) {

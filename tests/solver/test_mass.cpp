@@ -1,6 +1,6 @@
 // Requirement: the consistent mass matrix carries the body's mass and inertia of rigid translation.
-// Checks: for hex8, tet4, tet10 (interior nodes distorted, tet10 curved): element volumes sum to the
-// cube's 8 mm^3 (1e-12); sum of the entries of each direction
+// Checks: for hex8, tet4, tet10, hex20, hex20r (interior nodes distorted, quadratic elements
+// curved): element volumes sum to the cube's 8 mm^3 (1e-12); sum of the entries of each direction
 // block = rho V to 1e-12 relative, with V from the element volumes; M times a unit rigid
 // translation gives nodal forces summing to rho V in that direction and 0 in the others (1e-12);
 // the tet4 element matrix equals the closed form rho V / 20 (1 + delta_ab) to 1e-14 relative;
@@ -16,7 +16,8 @@ namespace {
 constexpr double rho = 1.2e-10;  // [t/mm^3] = 120 kg/m^3 foam
 
 TEST(Mass, SumsToTotalMassAndTranslatesRigidly) {
-  for (auto type : {mesh::ElementType::hex8, mesh::ElementType::tet4, mesh::ElementType::tet10}) {
+  for (auto type : {mesh::ElementType::hex8, mesh::ElementType::tet4, mesh::ElementType::tet10,
+                    mesh::ElementType::hex20, mesh::ElementType::hex20r}) {
     SCOPED_TRACE(mesh::to_string(type));
     // Interior nodes distorted, boundary nodes on the cube faces: the volume stays 8 mm^3.
     const mesh::Mesh regular = test::distorted_block(type, 2, 0.0, true);

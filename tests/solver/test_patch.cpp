@@ -3,7 +3,8 @@
 // det F = 0.8; interior nodes are free and solved by Newton. Interior displacements equal (F - I) X
 // to 1e-10 mm, and the stress at every quadrature point equals the material-point stress at F to
 // 1e-10 relative. hex8, hex8 F-bar, tet4, tet10 (straight-sided: its 4-point rule is exact for
-// the patch only then); NeoHookean and Hyperfoam.
+// the patch only then), hex20 (C3D20, 3x3x3) and hex20r (C3D20R, 2x2x2), straight-sided with
+// distorted corners; NeoHookean and Hyperfoam.
 #include <gtest/gtest.h>
 
 #include "solver/equilibrium.hpp"
@@ -92,6 +93,16 @@ TEST(PatchTest, Tet4) {
 TEST(PatchTest, Tet10) {
   patch_test(mesh::ElementType::tet10, Formulation::full, test::neo_hookean());
   patch_test(mesh::ElementType::tet10, Formulation::full, test::hyperfoam());
+}
+
+TEST(PatchTest, Hex20) {
+  patch_test(mesh::ElementType::hex20, Formulation::full, test::neo_hookean());
+  patch_test(mesh::ElementType::hex20, Formulation::full, test::hyperfoam());
+}
+
+TEST(PatchTest, Hex20Reduced) {
+  patch_test(mesh::ElementType::hex20r, Formulation::full, test::neo_hookean());
+  patch_test(mesh::ElementType::hex20r, Formulation::full, test::hyperfoam());
 }
 
 }  // namespace
