@@ -18,8 +18,8 @@
 ///  "hyperfoam_fit": {"terms": 3,                  (optional block; N = 1..6, default 3)
 ///                    "poisson": "per_term" | "common",   (default per_term: nu_i each fitted)
 ///                    "lateral_weight": 1.0,       (>= 0; weight of the lateral-stretch residuals)
-///                    "stable_stretch": [0.2, 1.5]}  (Drucker-stable stretch range required; default
-///                                               [0.8 min data stretch, max(1.5, 1.2 max data stretch)])
+///                    "stable_stretch": [0.2, 1.5]}  (Drucker-stable stretch range required in all four modes;
+///                                               default: per mode, hyperfoam_modes_fit.hpp default_stable_stretch)
 /// }
 /// Every problem is an InputError naming the file and key or line/column; nothing is fitted before the
 /// whole campaign has been read.
@@ -46,7 +46,7 @@ struct HyperfoamFitSettings {
   int terms = 3;                ///< N, 1..6
   bool per_term_nu = true;      ///< false: one common nu
   double lateral_weight = 1.0;  ///< weight of the lateral residuals (relative to the stress ones)
-  std::optional<std::pair<double, double>> stable_stretch;  ///< [min, max] stretch; empty: from the data
+  std::optional<std::pair<double, double>> stable_stretch;  ///< [min, max] stretch, every mode; empty: per mode from the data
   double alpha_min = 0.2, alpha_max = 50.0;  ///< alpha_min <= |alpha_i| <= alpha_max
   double nu_max = 0.45;         ///< 0 <= nu_i <= nu_max
   int polished = 8;             ///< best grid starts polished, of each kind (mu >= 0; free mu)

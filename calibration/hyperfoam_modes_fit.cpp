@@ -217,16 +217,30 @@ Candidate polish(const ModesResidual& f, const HyperfoamFitSettings& s, Candidat
   return c;
 }
 
-/// The Drucker penalty states: uniaxial, equibiaxial, planar, volumetric at 16 stretches from lo to 1 and 8 from
-/// 1 to hi, geometric (the final check, material/stability.hpp, is finer).
-std::vector<std::pair<HyperfoamMode, double>> drucker_probes(std::pair<double, double> range) {
+constexpr HyperfoamMode kStabilityModes[4] = {HyperfoamMode::uniaxial, HyperfoamMode::equibiaxial, HyperfoamMode::planar,
+                                             HyperfoamMode::volumetric};  // material::StabilityMode order
+
+/// The Drucker penalty states: each mode at 16 stretches from its lower stable stretch to 1 and 8 from 1 to its upper,
+/// geometric (the final check, material/stability.hpp, is finer).
+std::vector<std::pair<HyperfoamMode, double>> drucker_probes(const StableStretch& ranges) {
   std::vector<std::pair<HyperfoamMode, double>> out;
-  for (HyperfoamMode m : {HyperfoamMode::uniaxial, HyperfoamMode::equibiaxial, HyperfoamMode::planar, HyperfoamMode::volumetric}) {
-    for (int k = 0; k < 16; ++k) out.push_back({m, std::pow(range.first, 1.0 - k / 16.0)});
-    for (int k = 1; k <= 8; ++k) out.push_back({m, std::pow(range.second, k / 8.0)});
+  for (int m = 0; m < 4; ++m) {
+    for (int k = 0; k < 16; ++k) out.push_back({kStabilityModes[m], std::pow(ranges[std::size_t(m)].first, 1.0 - k / 16.0)});
+    for (int k = 1; k <= 8; ++k) out.push_back({kStabilityModes[m], std::pow(ranges[std::size_t(m)].second, k / 8.0)});
   }
   return out;
 }
+
+}  // namespace
+
+std::string describe(const StableStretch& r) {
+  const char* names[4] = {"uniaxial", "equibiaxial", "planar", "volumetric"};
+  std::ostringstream o;
+  for (std::size_t m = 0; m < 4; ++m) o << (m ? ", " : "") << names[m] << " [" << r[m].first << ", " << r[m].second << "]";
+  return o.str();
+}
+
+namespace {
 
 std::string join(const std::vector<double>& v) {
   std::ostringstream o;
@@ -265,16 +279,41 @@ HyperfoamTestFigures evaluate_hyperfoam_test(const std::vector<material::Hyperfo
   return f;
 }
 
-std::pair<double, double> default_stable_stretch(const std::vector<HyperfoamTest>& tests) {
-  double lo = 1.0, hi = 1.0;
-  for (const auto& t : tests)
+StableStretch default_stable_stretch(const std::vector<HyperfoamTest>& tests) {
+  std::array<double, 4> lo{1.0, 1.0, 1.0, 1.0}, hi{1.0, 1.0, 1.0, 1.0};
+  std::array<bool, 4> tested{};
+  for (const auto& t : tests) {
+    const bool shear = t.mode == HyperfoamMode::simple_shear;
+    const std::size_t m = shear ? 2 : std::size_t(std::find(kStabilityModes, kStabilityModes + 4, t.mode) - kStabilityModes);
+    tested[m] = true;
     for (double x : t.control) {
-      const bool shear = t.mode == HyperfoamMode::simple_shear;
       const double l = shear ? std::sqrt(1.0 + 0.25 * x * x) + 0.5 * std::abs(x) : x;  // shear: l and 1/l
-      lo = std::min(lo, shear ? 1.0 / l : l);
-      hi = std::max(hi, l);
+      lo[m] = std::min(lo[m], shear ? 1.0 / l : l);
+      hi[m] = std::max(hi[m], l);
     }
-  return {0.8 * lo, std::max(1.5, 1.2 * hi)};
+  }
+  StableStretch r;
+  std::pair<double, double> narrowest{0.0, 1e300};
+  for (std::size_t m = 0; m < 4; ++m)
+    if (tested[m]) {
+      r[m] = {0.8 * lo[m], std::max(1.5, 1.2 * hi[m])};
+      narrowest = {std::max(narrowest.first, r[m].first), std::min(narrowest.second, r[m].second)};
+    }
+  for (std::size_t m = 0; m < 4; ++m)
+    if (!tested[m]) r[m] = narrowest;
+  return r;
+}
+
+bool stable_over(const material::Hyperelastic& model, const StableStretch& ranges) {
+  double lo = 1.0, hi = 1.0;
+  for (const auto& [a, b] : ranges) lo = std::min(lo, a), hi = std::max(hi, b);
+  const material::StabilityReport report = material::check_stability(model, lo - 1.0, hi - 1.0);
+  for (std::size_t m = 0; m < 4 && m < report.modes.size(); ++m) {
+    const auto& mode = report.modes[m];
+    if (mode.first_unstable_compression && *mode.first_unstable_compression >= ranges[m].first - 1.0) return false;
+    if (mode.first_unstable_tension && *mode.first_unstable_tension <= ranges[m].second - 1.0) return false;
+  }
+  return true;
 }
 
 HyperfoamModesFit fit_hyperfoam_modes(const std::vector<HyperfoamTest>& tests, const HyperfoamFitSettings& s) {
@@ -284,7 +323,8 @@ HyperfoamModesFit fit_hyperfoam_modes(const std::vector<HyperfoamTest>& tests, c
   const std::vector<TestScale> scales = test_scales(tests);
   double scale = 0.0;
   for (const auto& t : scales) scale = std::max(scale, t.peak);
-  fit.stable_stretch = s.stable_stretch ? *s.stable_stretch : default_stable_stretch(tests);
+  fit.stable_stretch = default_stable_stretch(tests);
+  if (s.stable_stretch) fit.stable_stretch.fill(*s.stable_stretch);
   ModesResidual f{&tests, scales, s.lateral_weight, scale, N, !s.per_term_nu, {}, 0.0, 0.0};
   f.probes = drucker_probes(fit.stable_stretch);
   f.penalty = 100.0;
@@ -309,11 +349,10 @@ HyperfoamModesFit fit_hyperfoam_modes(const std::vector<HyperfoamTest>& tests, c
     }
   std::stable_sort(finals.begin(), finals.end(), [](const Candidate& a, const Candidate& b) { return a.cost < b.cost; });
   // 3. The best Drucker-stable candidate.
-  const auto [lo, hi] = fit.stable_stretch;
   auto stable = [&](const Candidate& c) {
     double sum = 0.0;
     for (double m : c.mu) sum += m;
-    return sum > 0.0 && material::check_stability(material::Hyperfoam(to_terms(c, scale)), lo - 1.0, hi - 1.0).stable();
+    return sum > 0.0 && stable_over(material::Hyperfoam(to_terms(c, scale)), fit.stable_stretch);
   };
   const Candidate* chosen = nullptr;
   for (const auto& c : finals) {
@@ -325,7 +364,7 @@ HyperfoamModesFit fit_hyperfoam_modes(const std::vector<HyperfoamTest>& tests, c
   }
   if (!chosen) {
     std::ostringstream msg;
-    msg << "fit: no Drucker-stable " << N << "-term hyperfoam over stretch [" << lo << ", " << hi << "]: screened "
+    msg << "fit: no Drucker-stable " << N << "-term hyperfoam over stretch " << describe(fit.stable_stretch) << ": screened "
         << fit.starts << " exponent subsets x common nu {" << join(fit.nu_screen) << "}, polished " << fit.polishes
         << " starts; all " << finals.size() << " candidates unstable";
     throw std::runtime_error(msg.str());
@@ -335,6 +374,8 @@ HyperfoamModesFit fit_hyperfoam_modes(const std::vector<HyperfoamTest>& tests, c
   fit.terms = to_terms(*chosen, scale);
   fit.cost = chosen->cost;
   for (const auto& t : tests) fit.tests.push_back(evaluate_hyperfoam_test(fit.terms, t));
+  double lo = 1.0, hi = 1.0;
+  for (const auto& [a, b] : fit.stable_stretch) lo = std::min(lo, a), hi = std::max(hi, b);
   fit.stability = material::check_stability(material::Hyperfoam(fit.terms), lo - 1.0, hi - 1.0).summary();
   return fit;
 }

@@ -13,8 +13,10 @@
 ///   2. polish: all parameters jointly from each kept start, nu_i per term starting from the common nu (Ceres
 ///      bounded trust region; mu scaled by the largest peak; alpha keeps its sign, 0.2 <= |alpha| <= alpha_max;
 ///      0 <= nu_i <= 0.49); the free stretch is solved per point (implicit derivative, hyperfoam_modes.hpp);
-///   3. the lowest-cost candidate (polished or start) that is Drucker-stable (material/stability.hpp, all
-///      four modes) over the stable stretch range and has sum mu > 0 is returned; std::runtime_error otherwise.
+///   3. the lowest-cost candidate (polished or start) that is Drucker-stable (material/stability.hpp) in each of
+///      the four modes over its stable stretch range (default_stable_stretch, or the campaign's one range for all)
+///      and has sum mu > 0 is returned; std::runtime_error otherwise.
+#include <array>
 #include <string>
 #include <utility>
 #include <vector>
@@ -23,6 +25,10 @@
 #include "material/hyperfoam.hpp"
 
 namespace cushion::calibration {
+
+/// Required Drucker-stable stretch range [min, max] per mode, in material/stability.hpp's order: uniaxial,
+/// equibiaxial, planar, volumetric.
+using StableStretch = std::array<std::pair<double, double>, 4>;
 
 /// Model vs one test.
 struct HyperfoamTestFigures {
@@ -39,8 +45,8 @@ struct HyperfoamModesFit {
   std::vector<material::HyperfoamTerm> terms;  ///< mu [MPa], alpha [-], nu [-] per term
   std::vector<HyperfoamTestFigures> tests;     ///< in campaign order
   double cost = 0.0;                           ///< objective at the answer (see top)
-  std::pair<double, double> stable_stretch;    ///< stretch range over which Drucker stability was required
-  std::string stability;                       ///< check_stability summary over that range
+  StableStretch stable_stretch;                ///< stretch ranges over which Drucker stability was required
+  std::string stability;                       ///< check_stability summary over the union of those ranges
   int starts = 0, polishes = 0, rejected_unstable = 0;
   std::vector<double> nu_screen;               ///< common nu values of the screen
   std::vector<std::string> warnings;
@@ -49,9 +55,16 @@ struct HyperfoamModesFit {
 /// Model stress [MPa] and free stretch [-] of `terms` in `mode` at the controls (stretch, or gamma).
 HyperfoamTestFigures evaluate_hyperfoam_test(const std::vector<material::HyperfoamTerm>& terms, const HyperfoamTest& test);
 
-/// Default stable stretch range of a campaign: [0.8 min stretch, max(1.5, 1.2 max stretch)] over every test
-/// (simple shear: its principal stretches).
-std::pair<double, double> default_stable_stretch(const std::vector<HyperfoamTest>& tests);
+/// Default stable stretch ranges of a campaign, covering each mode's data and beyond: a mode with data
+/// [0.8 min stretch, max(1.5, 1.2 max stretch)] of its tests (simple shear data count as planar, with their principal
+/// stretches l and 1/l); a mode without data the narrowest of those ranges (largest min, smallest max).
+StableStretch default_stable_stretch(const std::vector<HyperfoamTest>& tests);
+
+/// "uniaxial [0.2, 1.5], equibiaxial [..], planar [..], volumetric [..]".
+std::string describe(const StableStretch& ranges);
+
+/// Drucker-stable over every mode's range (material/stability.hpp, run once over the union of the ranges).
+bool stable_over(const material::Hyperelastic& model, const StableStretch& ranges);
 
 /// The fit (see top). Throws std::runtime_error when no Drucker-stable candidate is found.
 HyperfoamModesFit fit_hyperfoam_modes(const std::vector<HyperfoamTest>& tests, const HyperfoamFitSettings& settings);

@@ -53,7 +53,7 @@ std::string provenance(const HyperfoamCampaign& c, const HyperfoamModesFit& fit)
   std::string tests;
   for (const auto& t : c.tests) tests += (tests.empty() ? "" : ", ") + t.name + " (" + to_string(t.mode) + ")";
   return "cushion fit of " + c.manifest.filename().string() + " (hyperfoam-only campaign: " + tests + "), N = " +
-         std::to_string(fit.terms.size()) + ", nu per term";
+         std::to_string(fit.terms.size()) + (c.settings.per_term_nu ? ", nu per term" : ", one common nu");
 }
 
 nlohmann::json report_json(const HyperfoamModesFit& fit, const HyperfoamCampaign& c) {
@@ -66,7 +66,8 @@ nlohmann::json report_json(const HyperfoamModesFit& fit, const HyperfoamCampaign
                    {"poisson", c.settings.per_term_nu ? "per_term" : "common"},
                    {"lateral_weight", c.settings.lateral_weight}};
   j["objective"] = fit.cost;
-  j["stable_stretch"] = {fit.stable_stretch.first, fit.stable_stretch.second};
+  const char* modes[4] = {"uniaxial", "equibiaxial", "planar", "volumetric"};
+  for (std::size_t m = 0; m < 4; ++m) j["stable_stretch"][modes[m]] = {fit.stable_stretch[m].first, fit.stable_stretch[m].second};
   j["stability"] = fit.stability;
   j["search"] = {{"screened_starts", fit.starts}, {"polishes", fit.polishes}, {"rejected_unstable", fit.rejected_unstable},
                  {"common_nu_screen", fit.nu_screen}};
@@ -103,8 +104,8 @@ std::string report_markdown(const HyperfoamModesFit& fit, const HyperfoamCampaig
       << num(f.r2, 7) << " | " << percent(f.rms) << " | " << percent(f.max) << " | " << percent(f.lateral_max) << " | "
       << percent(f.lateral_rms) << " |\n";
   }
-  o << "\nDrucker stability required over stretch [" << num(fit.stable_stretch.first, 4) << ", "
-    << num(fit.stable_stretch.second, 4) << "] (uniaxial, equibiaxial, planar, volumetric):\n\n```\n" << fit.stability
+  o << "\nDrucker stability required over stretch " << describe(fit.stable_stretch) << "; the check over their union:\n\n```\n"
+    << fit.stability
     << "\n```\n\nSearch: " << fit.starts << " screened starts (exponent subsets x common nu), " << fit.polishes
     << " Ceres polishes, " << fit.rejected_unstable << " better candidate(s) rejected as unstable.\n\n";
   for (const auto& w : fit.warnings) o << "- warning: " << w << "\n";
@@ -159,8 +160,7 @@ void log_hyperfoam_fit(const HyperfoamModesFit& fit, const HyperfoamCampaign& c,
     if (f.lateral_max >= 0.0) o << ", lateral stretch max error " << percent(f.lateral_max);
     o << "\n";
   }
-  o << "fit: Drucker-stable over stretch [" << num(fit.stable_stretch.first, 4) << ", " << num(fit.stable_stretch.second, 4)
-    << "]; " << fit.starts << " screened starts, " << fit.polishes << " polishes, " << fit.rejected_unstable
+  o << "fit: Drucker-stable over stretch " << describe(fit.stable_stretch) << "; " << fit.starts << " screened starts, " << fit.polishes << " polishes, " << fit.rejected_unstable
     << " better fit(s) rejected as unstable\n";
   log << o.str();
 }

@@ -127,17 +127,22 @@ TEST(HyperfoamModesFit, RoundTripOnIndependentForwardData) {
 }
 
 TEST(HyperfoamModesFit, KossaPolyethyleneFoamReachesTheShippedFigures) {
-  // cases/kossa_pe_foam (real data). Figures measured when the case was shipped (README there), asserted with a
-  // small margin: stress R^2 uniaxial 0.99694, equibiaxial 0.99502; transverse stretch within 0.34 % and 0.29 %;
-  // Drucker-stable over stretch [0.2, 1.5] in the four modes.
+  // cases/kossa_pe_foam (real data; N = 4, lateral_weight 0.15). Figures measured when the case was shipped (README
+  // there), asserted with a small margin: stress R^2 uniaxial 0.999812, equibiaxial 0.999931 (issue 13: >= 0.9998);
+  // transverse stretch within 0.449 % and 0.267 % (issue 13: 0.5 %); Drucker-stable in each mode over its data and
+  // beyond. About 20 s.
   const cal::HyperfoamCampaign c =
       cal::read_hyperfoam_campaign(std::string(CUSHION_SOURCE_DIR) + "/cases/kossa_pe_foam/campaign.json");
   const cal::HyperfoamModesFit fit = cal::fit_hyperfoam_modes(c.tests, c.settings);
   ASSERT_EQ(fit.tests.size(), 2u);
-  EXPECT_GT(fit.tests[0].r2, 0.9965);
-  EXPECT_GT(fit.tests[1].r2, 0.9945);
-  EXPECT_LT(fit.tests[0].lateral_max, 0.004);
-  EXPECT_LT(fit.tests[1].lateral_max, 0.0035);
-  EXPECT_TRUE(mat::check_stability(mat::Hyperfoam(fit.terms), fit.stable_stretch.first - 1.0, fit.stable_stretch.second - 1.0)
-                  .stable());
+  EXPECT_GT(fit.tests[0].r2, 0.99980);
+  EXPECT_GT(fit.tests[1].r2, 0.99990);
+  EXPECT_LT(fit.tests[0].lateral_max, 0.0047);
+  EXPECT_LT(fit.tests[1].lateral_max, 0.0030);
+  EXPECT_TRUE(cal::stable_over(mat::Hyperfoam(fit.terms), fit.stable_stretch));
+  // Each mode's data and beyond: uniaxial from 0.2 (data 0.25), equibiaxial from 0.44 (data 0.55).
+  EXPECT_NEAR(fit.stable_stretch[0].first, 0.2, 1e-12);
+  EXPECT_NEAR(fit.stable_stretch[1].first, 0.44, 1e-12);
+  const auto report = mat::check_stability(mat::Hyperfoam(fit.terms), -0.8, 0.5);
+  EXPECT_FALSE(report.modes[0].first_unstable_compression.has_value());  // uniaxial stable to stretch 0.2
 }

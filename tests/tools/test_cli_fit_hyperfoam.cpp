@@ -67,7 +67,7 @@ TEST_F(CliFitHyperfoam, KossaCaseWritesEveryOutput) {
   EXPECT_EQ(report.at("kind"), "hyperfoam_only");
   EXPECT_EQ(report.at("terms").size(), 2u);
   EXPECT_GT(report.at("tests")[0].at("stress_r2").get<double>(), 0.99);
-  EXPECT_LT(report.at("tests")[1].at("lateral_stretch_max_relative_error").get<double>(), 0.005);
+  EXPECT_LT(report.at("tests")[1].at("lateral_stretch_max_relative_error").get<double>(), 0.01);
 }
 
 TEST_F(CliFitHyperfoam, StressColumnWithoutUnit) {
