@@ -10,10 +10,7 @@
 #include "io/json_reader.hpp"
 
 namespace cushion::calibration {
-namespace {
 
-/// File line of each data row, with the CSV reader's rule: blank lines and '#' lines are skipped,
-/// the first remaining line is the header.
 std::vector<int> data_row_lines(const std::filesystem::path& file) {
   std::ifstream in(file);
   std::vector<int> lines;
@@ -35,6 +32,8 @@ std::string at_line(const std::string& source, const std::vector<int>& lines, st
   const int line = row < lines.size() ? lines[row] : 0;
   return source + ":" + std::to_string(line) + ", column " + column + ": ";
 }
+
+namespace {
 
 bool positive(double x) { return x > 0.0; }
 bool unit_interval(double x) { return x >= 0.0 && x < 1.0; }

@@ -69,6 +69,13 @@ struct Campaign {
 /// Reads and validates the manifest and every test file it names.
 Campaign read_campaign(const std::filesystem::path& manifest);
 
+/// File line (1-based) of each data row of a CSV, with the CSV reader's rule: blank lines and '#' lines are
+/// skipped, the first remaining line is the header.
+std::vector<int> data_row_lines(const std::filesystem::path& file);
+
+/// "source:LINE, column COLUMN: " for data row `row` (0-based) of a CSV whose rows are on `lines`.
+std::string at_line(const std::string& source, const std::vector<int>& lines, std::size_t row, const std::string& column);
+
 /// Reads one quasi-static CSV (time_s, displacement_mm, force_N) for a specimen.
 StressStrainRecord read_quasi_static_csv(const std::filesystem::path& file, const Specimen& specimen);
 

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "calibration/fit_pipeline.hpp"
+#include "calibration/hyperfoam_modes_output.hpp"
 #include "io/input_error.hpp"
 #include "io/output_folder.hpp"
 #include "tools/command.hpp"
@@ -24,6 +25,27 @@ struct FitCliOptions {
   double preload_rate = 30.0;
   bool relaxed_preload = false;
 };
+
+/// A hyperfoam-only campaign ("hyperfoam_tests"): --terms and --nu (a value fixes a common nu) apply, the
+/// options of the Prony path do not.
+void fit_hyperfoam_campaign(const FitCliOptions& opt, const CLI::App& sub) {
+  using namespace cushion::calibration;
+  std::cout << "fit: reading " << opt.campaign << " (hyperfoam-only campaign)\n";
+  HyperfoamCampaign campaign = read_hyperfoam_campaign(opt.campaign);
+  if (sub.count("--terms") > 0) campaign.settings.terms = opt.terms;
+  for (const char* o : {"--tau", "--no-refit", "--default", "--normalisation", "--refit-on", "--dynamic-cycles",
+                        "--fit-cycles", "--preload-rate", "--relaxed-preload", "--nu"})
+    if (sub.count(o) > 0) std::cout << "fit: note: " << o << " does not apply to a hyperfoam-only campaign (ignored)\n";
+  std::cout << "fit: " << campaign.tests.size() << " test(s), " << campaign.settings.terms << " term(s), nu "
+            << (campaign.settings.per_term_nu ? "per term" : "common") << "\n";
+  const HyperfoamModesFit fit = fit_hyperfoam_modes(campaign.tests, campaign.settings);
+  log_hyperfoam_fit(fit, campaign, std::cout);
+  const auto plots = write_hyperfoam_outputs(fit, campaign, opt.out, cushion::tools::gnuplot_path(), std::cout);
+  std::size_t drawn = 0;
+  for (const auto& p : plots) drawn += p.drawn;
+  std::cout << "fit: outputs in " << opt.out << "/ : material.json abaqus_hyperfoam.inp report.md report.json, "
+            << plots.size() << " plots (" << drawn << " PNG drawn)\n";
+}
 
 const cushion::tools::Registrar reg{"fit", [](CLI::App& app) {
   auto opt = std::make_shared<FitCliOptions>();
@@ -49,8 +71,9 @@ const cushion::tools::Registrar reg{"fit", [](CLI::App& app) {
   sub->add_option("--preload-rate", opt->preload_rate, "dynamic test: preload ramp speed [mm/min] (paper: 30)")
       ->check(CLI::PositiveNumber);
   sub->add_flag("--relaxed-preload", opt->relaxed_preload, "model the dynamic test about a fully relaxed preload");
-  sub->callback([opt] {
+  sub->callback([opt, sub] {
     using namespace cushion::calibration;
+    if (is_hyperfoam_campaign(opt->campaign)) return fit_hyperfoam_campaign(*opt, *sub);
     FitOptions o;
     o.terms = opt->terms;
     if (opt->nu == "fit") {

@@ -27,6 +27,8 @@
 //   hidden_effects/      campaigns for `cushion diagnose` / `compare`; tests/calibration/test_diagnose.cpp,
 //                        tests/tools/test_cli_compare.cpp;
 //   materials/           material files only (used by the cases here);
+//   kossa_pe_foam/       real data, a hyperfoam-only campaign for `cushion fit`; tests/calibration
+//                        (test_hyperfoam_modes_fit.cpp), tests/tools (test_cli_fit_hyperfoam.cpp);
 //   the scripts (sitbar_quasistatic/plot.sh, mesh_convergence.sh, sitbar_sweep/run.sh, and the CalculiX side of
 //   calculix_check, tools/calculix_indentation.sh) are not run here; sitbar_sweep/run.sh runs, as the README prints
 //   it, in the ctest Readme.CommandsRunAsPrinted (label readme).
