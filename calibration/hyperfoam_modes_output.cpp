@@ -9,8 +9,10 @@
 
 #include "calibration/abaqus_cards.hpp"
 #include "calibration/fit_model.hpp"
+#include "calibration/fit_output.hpp"
 #include "io/csv.hpp"
 #include "io/input_error.hpp"
+#include "io/output_folder.hpp"
 #include "io/text_support.hpp"
 #include "material/io/material_file.hpp"
 
@@ -167,11 +169,10 @@ void log_hyperfoam_fit(const HyperfoamModesFit& fit, const HyperfoamCampaign& c,
 
 std::vector<PlotFiles> write_hyperfoam_outputs(const HyperfoamModesFit& fit, const HyperfoamCampaign& c, const fs::path& dir,
                                                const std::string& gnuplot, std::ostream& log) {
-  if (fs::exists(dir) && !(fs::is_directory(dir) && (fs::is_empty(dir) || fs::exists(dir / "report.json"))))
-    throw InputError(dir.string() + ": exists and is not an earlier fit output; choose another output folder");
+  io::check_output_folder(fit_output_folder(dir, true, c.manifest));  // the command refused it without --overwrite
   const fs::path tmp = dir.string() + ".partial";
   fs::remove_all(tmp);
-  fs::create_directories(tmp);
+  io::create_folder(tmp);
   try {
     const std::string source = provenance(c, fit);
     material::write_material_file(to_spec({fit.terms, {}}, "foam", source, c.density), tmp / "material.json");
@@ -184,8 +185,7 @@ std::vector<PlotFiles> write_hyperfoam_outputs(const HyperfoamModesFit& fit, con
       if (!f.drawn) log << "fit: note: " << f.message << "\n";
     io::write_file_atomically(tmp / "report.json", report_json(fit, c).dump(1) + "\n");
     io::write_file_atomically(tmp / "report.md", report_markdown(fit, c, files));
-    fs::remove_all(dir);
-    fs::rename(tmp, dir);
+    io::replace_folder(tmp, dir);
     for (auto& f : files) {
       f.csv = dir / f.csv.filename();
       f.script = dir / f.script.filename();

@@ -2,6 +2,7 @@
 // (steps 1-6), the Prony conversion for the solver (7) and the consistency refit (8), with a report.
 #include <sstream>
 
+#include "calibration/fit_output.hpp"
 #include "calibration/fit_pipeline.hpp"
 #include "calibration/hyperfoam_modes_output.hpp"
 #include "io/input_error.hpp"
@@ -30,6 +31,7 @@ struct FitCliOptions {
 /// options of the Prony path do not.
 void fit_hyperfoam_campaign(const FitCliOptions& opt, const CLI::App& sub) {
   using namespace cushion::calibration;
+  cushion::io::check_output_folder(fit_output_folder(opt.out.dir, opt.out.overwrite, opt.campaign));
   std::cout << "fit: reading " << opt.campaign << " (hyperfoam-only campaign)\n";
   HyperfoamCampaign campaign = read_hyperfoam_campaign(opt.campaign);
   if (sub.count("--terms") > 0) campaign.settings.terms = opt.terms;
@@ -40,10 +42,10 @@ void fit_hyperfoam_campaign(const FitCliOptions& opt, const CLI::App& sub) {
             << (campaign.settings.per_term_nu ? "per term" : "common") << "\n";
   const HyperfoamModesFit fit = fit_hyperfoam_modes(campaign.tests, campaign.settings);
   log_hyperfoam_fit(fit, campaign, std::cout);
-  const auto plots = write_hyperfoam_outputs(fit, campaign, opt.out, cushion::tools::gnuplot_path(), std::cout);
+  const auto plots = write_hyperfoam_outputs(fit, campaign, opt.out.dir, cushion::tools::gnuplot_path(), std::cout);
   std::size_t drawn = 0;
   for (const auto& p : plots) drawn += p.drawn;
-  std::cout << "fit: outputs in " << opt.out << "/ : material.json abaqus_hyperfoam.inp report.md report.json, "
+  std::cout << "fit: outputs in " << opt.out.dir.string() << "/ : material.json abaqus_hyperfoam.inp report.md report.json, "
             << plots.size() << " plots (" << drawn << " PNG drawn)\n";
 }
 
