@@ -9,6 +9,7 @@
 #include "io/output_folder.hpp"
 #include "tools/command.hpp"
 #include "tools/fit_job.hpp"
+#include "tools/gnuplot.hpp"
 
 namespace {
 
