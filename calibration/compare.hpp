@@ -18,7 +18,7 @@
 /// and campaign. Regions: low/mid/high thirds of the frequency list, each for |E*| [kPa] and phase [deg].
 ///
 /// Noise estimates (data only, never the model):
-///   quasi-static: a noise that depends on the reading, sigma^2 = A stress^2 + B, fitted to the third
+///   quasi-static: a noise that depends on the reading, sigma^2 = A stress^2 + B, fitted to the fifth
 ///     differences on the loading, hold and unloading branches (compare_metrics.hpp reading_noise): the noise
 ///     at each sample, so each region is judged against the noise at its own stress, the hold included;
 ///   dynamic: scatter of |E*| and of the phase about a smooth least-squares polynomial in log f
