@@ -114,6 +114,10 @@ std::vector<double> reading_noise(const std::vector<double>& y,
   }
   std::vector<double> sigma;
   for (double v : y) sigma.push_back(std::sqrt(m.A * v * v + m.B));
+  // A relative-only fit (B = 0) would give zero noise at zero force, and infinite normalised residuals there: no
+  // sample is credited with less than 10 % of the record's RMS noise.
+  const double lowest = 0.1 * rms_of(sigma);
+  for (double& x : sigma) x = std::max(x, lowest);
   return sigma;
 }
 

@@ -46,7 +46,8 @@ double polynomial_scatter(const std::vector<double>& x, const std::vector<double
 /// unloading; no difference spans a corner), whose expectation is sum_j c_j^2 sigma^2(y[k+j]), by least squares
 /// weighted with the inverse variance of d_k^2 (iterated) and with differences beyond 4 standard deviations left
 /// out (a corner, a fast relaxation: signal, not noise). Every sample gets sigma(y_i), those outside the branches
-/// too; empty when the branches hold fewer than 8 differences.
+/// too, and at least 10 % of the record's RMS noise (a relative-only fit gives no zero noise at zero force); empty
+/// when the branches hold fewer than 8 differences.
 std::vector<double> reading_noise(const std::vector<double>& y,
                                   const std::vector<std::pair<std::size_t, std::size_t>>& branches);
 

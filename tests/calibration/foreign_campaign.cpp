@@ -263,6 +263,7 @@ ForeignCampaign make_foreign_campaign(ForeignCase c, const fs::path& dir) {
               {rec.frequency_Hz, rec.dynamic_modulus_kPa, rec.phase_deg}, {"SYNTHETIC foreign test " + p.name});
     manifest["tests"].push_back({{"kind", "dynamic"}, {"name", p.name}, {"file", p.name + ".csv"},
                                  {"preload_strain", preload}, {"acceleration_amplitude_m_s2", p.acceleration_amplitude},
+                                 {"cycles", p.cycles}, {"fit_cycles", p.fit_cycles},  // the protocol as run
                                  {"use", preload == 0.25 ? "calibration" : "validation"}});
   }
   out.manifest = dir / "campaign.json";
