@@ -102,7 +102,9 @@ std::vector<std::string> specimen_warnings(double material_density, const Campai
 std::vector<std::string> coverage_warnings(const Campaign& campaign);
 
 /// Noise-normalised residuals for least squares (diagnose): quasi-static (model - measured)/sigma at up to
-/// `quasi_static_points` evenly spread samples per test; dynamic (|E*| error)/sigma_E and (phase error)/sigma_phase
+/// `quasi_static_points` evenly spread samples per test, sigma the local noise but at least half the test's RMS noise
+/// (weights at most 4x the mean: at the lowest readings the true noise is tiny and model-form error would steer the
+/// fit); dynamic (|E*| error)/sigma_E and (phase error)/sigma_phase
 /// per frequency. Tests without a noise estimate or with a failed run contribute nothing (the latter: huge values).
 std::vector<double> normalised_residuals(const CompareResult& result, int quasi_static_points = 100);
 
