@@ -173,10 +173,12 @@ std::vector<PendingTest> scan_tests(const io::JsonNode& tests, const std::filesy
       continue;
     }
     if (kind == "quasi_static")
-      t.expect_object({"kind", "file", "name", "use", "rate_mm_min", "lateral"});
+      t.expect_object({"kind", "file", "name", "use", "rate_mm_min", "lateral", "preflex_cycles", "preflex_strain",
+                       "rest_between_tests_s", "lift_off"});
     else
       t.expect_object({"kind", "file", "name", "use", "preload_strain", "acceleration_amplitude_m_s2", "amplitude_is",
-                       "preload_rate_mm_min"});
+                       "amplitude_convention", "preload_rate_mm_min", "dwell_before_sweep_s", "cycles", "fit_cycles",
+                       "preflex_cycles", "preflex_strain", "rest_between_tests_s", "lift_off"});
     std::optional<TestUse> use;
     if (auto u = t.find("use")) {
       use = u->choice({"calibration", "validation"}) == "calibration" ? TestUse::calibration : TestUse::validation;
@@ -202,6 +204,8 @@ QuasiStaticTest read_quasi_static_test(const io::JsonNode& t, std::string name, 
   q.use = use;
   q.rate = t.at("rate_mm_min").number_where(positive, "> 0") / 60.0;
   if (auto l = t.find("lateral")) q.lateral = l->choice({"free", "constrained"}) == "free" ? Lateral::free : Lateral::constrained;
+  q.prior = read_prior_loading(t);
+  if (auto l = t.find("lift_off")) q.lift_off = l->boolean();
   q.record = read_quasi_static_csv(file, specimen);
   return q;
 }
@@ -215,8 +219,14 @@ DynamicTest read_dynamic_test(const io::JsonNode& t, std::string name, const std
   d.use = use;
   d.preload_strain = t.at("preload_strain").number_where(unit_interval, "in [0, 1)");
   d.acceleration_amplitude = t.at("acceleration_amplitude_m_s2").number_where(positive, "> 0") * 1e3;
-  if (auto a = t.find("amplitude_is")) d.amplitude_peak_to_peak = a->choice({"peak_to_peak", "peak"}) == "peak_to_peak";
+  d.amplitude_peak_to_peak = read_peak_to_peak(t);
   if (auto r = t.find("preload_rate_mm_min")) d.preload_rate_mm_min = r->number_where(positive, "> 0");
+  if (auto w = t.find("dwell_before_sweep_s")) d.dwell_s = w->number_where([](double x) { return x >= 0.0; }, ">= 0");
+  if (auto c = t.find("cycles")) d.cycles = static_cast<int>(c->integer(1, 100000));
+  if (auto c = t.find("fit_cycles")) d.fit_cycles = static_cast<int>(c->integer(1, d.cycles));
+  else if (d.fit_cycles > d.cycles) t.at("cycles").fail("fewer than the default fit_cycles 10: give fit_cycles too");
+  d.prior = read_prior_loading(t);
+  if (auto l = t.find("lift_off")) d.lift_off = l->boolean();
   d.moduli = read_dynamic_csv(file, specimen);
   return d;
 }

@@ -13,9 +13,18 @@
 /// File paths are relative to the manifest. Quasi-static CSV: time_s,displacement_mm,force_N
 /// (compression positive). Dynamic CSV: frequency_Hz plus one of {dynamic_modulus_kPa, phase_deg},
 /// {storage_modulus_kPa, loss_modulus_kPa}, {dynamic_stiffness_N_per_mm, phase_deg}
-/// (E = k thickness / area). Optional per dynamic test: "amplitude_is": "peak_to_peak" (default, the paper's
-/// words) | "peak" (how acceleration_amplitude_m_s2 is read), "preload_rate_mm_min" (> 0; default: the
-/// reader's, 30 mm/min in compare).
+/// (E = k thickness / area).
+/// Protocol keys (how the test was run; each optional, with the default a forward model assumes; README
+/// "Protocol keys"): every material test: "preflex_cycles" (0: none; whole number in [0, 100]),
+/// "preflex_strain" (nominal compression of the preflex, in (0, 0.95); default 0.75; only with
+/// preflex_cycles > 0), "rest_between_tests_s" (unloaded rest after the preflex, >= 0, default 300),
+/// "lift_off" (true: a platen that only pushes, the force is clipped at zero and the foam may lose contact;
+/// false: specimen bonded to the platens; default true quasi-static, false dynamic). Dynamic tests:
+/// "preload_rate_mm_min" (> 0; default: the reader's, 30 mm/min in compare), "dwell_before_sweep_s" (hold at
+/// the preload before the first frequency, >= 0, default 0), "amplitude_convention": "peak_to_peak" (default,
+/// the paper's words) | "peak" (how acceleration_amplitude_m_s2 is read; older name "amplitude_is"),
+/// "cycles" (per frequency, whole number in [1, 100000], default 20), "fit_cycles" (last cycles the modulus and
+/// phase are fitted on, in [1, cycles], default 10).
 /// Structure-level tests ("kind": "indentation" | "dynamic_stiffness", never used for calibration):
 /// compare_structure_data.hpp. Every problem is an InputError naming the file and line/column or key.
 #include <filesystem>
@@ -25,6 +34,7 @@
 #include "calibration/compare_structure_data.hpp"
 #include "calibration/hyperfoam_fit.hpp"
 #include "calibration/prony_fit.hpp"
+#include "calibration/protocol.hpp"
 #include "calibration/segments.hpp"
 
 namespace cushion::calibration {
@@ -37,6 +47,8 @@ struct QuasiStaticTest {
   TestUse use = TestUse::validation;
   Lateral lateral = Lateral::free;
   double rate = 0.0;                 ///< crosshead speed [mm/s] (file: rate_mm_min)
+  PriorLoading prior;                ///< preflex and rest before the test
+  bool lift_off = true;              ///< platen that only pushes (file: lift_off)
   StressStrainRecord record;         ///< nominal, compression positive, MPa
 };
 
@@ -46,8 +58,13 @@ struct DynamicTest {
   TestUse use = TestUse::validation;
   double preload_strain = 0.0;          ///< nominal preload [-] in [0, 1)
   double acceleration_amplitude = 0.0;  ///< excitation amplitude [mm/s^2] (file: m/s^2)
-  bool amplitude_peak_to_peak = true;   ///< acceleration_amplitude is peak-to-peak (file: amplitude_is)
+  bool amplitude_peak_to_peak = true;   ///< acceleration_amplitude is peak-to-peak (file: amplitude_convention)
   double preload_rate_mm_min = 0.0;     ///< preload ramp speed [mm/min]; 0: not given (reader's default)
+  double dwell_s = 0.0;                 ///< hold at the preload before the sweep [s] (file: dwell_before_sweep_s)
+  int cycles = 20;                      ///< sine cycles run per frequency (file: cycles)
+  int fit_cycles = 10;                  ///< last cycles fitted for |E*| and phase (file: fit_cycles)
+  PriorLoading prior;                   ///< preflex and rest before the preload
+  bool lift_off = false;                ///< platen that only pushes (file: lift_off)
   DynamicModuli moduli;                 ///< E', E'' [MPa] vs frequency [Hz], increasing
 };
 

@@ -4,21 +4,23 @@
 /// run_dynamic of lab.hpp: platen control, preload ramp, sines, sine-fit measurement), and error
 /// figures that locate the failure, next to the measurement noise estimated from the data itself.
 ///
-/// Quasi-static test: the record's protocol (rate, peak strain, hold; starting virgin and relaxed,
-/// the campaign format records no preflex) at min(record rate, quasi_static_steps / ramp time) steps per
-/// second, interpolated to the record's samples. Regions: loading, unloading, low/mid/high thirds of the
-/// peak strain (both branches), and the hysteresis area (loop integral of stress d strain).
-/// Dynamic test: preload ramp at preload_rate_mm_min, then at each frequency `dynamic_cycles` sines of
-/// `dynamic_steps_per_cycle` steps, the last `dynamic_fit_cycles` sine-fitted (CHEAP schedule: the lab's
-/// 20 x 64 is ~4x dearer; the difference in the measured modulus is below the noise of typical data,
-/// see test_compare.cpp). Acceleration amplitude as written in the manifest, read as the test's
-/// amplitude_is (default peak-to-peak, paper 2.3), preload ramp at the test's preload_rate_mm_min (default
-/// CompareOptions::preload_rate_mm_min). Regions: low/mid/high thirds of the frequency list, each for |E*| [kPa] and phase [deg].
+/// Quasi-static test: the record's protocol (rate, peak strain, hold) after the campaign's preflex cycles and
+/// rest (protocol keys; default: none, a virgin relaxed specimen), with a platen that only pushes when the test's
+/// lift_off is true (default), at min(record rate, quasi_static_steps / ramp time) steps per second,
+/// interpolated to the record's samples. Regions: loading, unloading, low/mid/high thirds of the peak strain
+/// (both branches), and the hysteresis area (loop integral of stress d strain).
+/// Dynamic test: the whole protocol as the campaign describes it, by THE dynamic forward model
+/// (lab.hpp run_dynamic, also the virtual lab's): preflex and rest, preload ramp at preload_rate_mm_min
+/// (default CompareOptions::preload_rate_mm_min), dwell_before_sweep_s, then at each frequency the test's
+/// `cycles` (default 20) sines of `dynamic_steps_per_cycle` steps, |E*| and phase fitted on the last
+/// `fit_cycles` (default 10), amplitude read as the test's amplitude_convention (default peak-to-peak, paper
+/// 2.3). compare and diagnose run the same schedule, so they report the same figures for the same material
+/// and campaign. Regions: low/mid/high thirds of the frequency list, each for |E*| [kPa] and phase [deg].
 ///
 /// Noise estimates (data only, never the model):
-///   quasi-static: third differences d3 on each monotone branch (a local-polynomial high-pass: removes any
-///     quadratic trend), sigma = RMS(d3)/sqrt(20) over +-15 samples (the noise of a load cell grows with
-///     the force: local, so that each region is judged against its own noise);
+///   quasi-static: a noise that depends on the reading, sigma^2 = A stress^2 + B, fitted to the fifth
+///     differences on the loading, hold and unloading branches (compare_metrics.hpp reading_noise): the noise
+///     at each sample, so each region is judged against the noise at its own stress, the hold included;
 ///   dynamic: scatter of |E*| and of the phase about a smooth least-squares polynomial in log f
 ///     (cubic from 8 frequencies, quadratic from 5, else none), sigma = sqrt(SSR / (n - p)).
 /// NRMSE: quasi-static RMS / peak measured stress; |E*|: RMS / mean measured |E*|; phase: RMS / 90 deg.
@@ -38,9 +40,7 @@ namespace cushion::calibration {
 
 struct CompareOptions {
   int quasi_static_steps = 300;     ///< model steps per loading ramp at most (record rate if lower)
-  int dynamic_cycles = 6;           ///< cycles run per frequency by the model
-  int dynamic_fit_cycles = 3;       ///< last cycles sine-fitted
-  int dynamic_steps_per_cycle = 48;
+  int dynamic_steps_per_cycle = 64;  ///< model time steps per sine cycle (cycles per frequency: the campaign's)
   double preload_rate_mm_min = 30.0;  ///< dynamic preload ramp (paper 2.3) of tests that give none
   double noise_level_ratio = 1.5;   ///< error/noise at or below this: "at the noise level"
 };
@@ -48,7 +48,7 @@ struct CompareOptions {
 /// Data-only noise estimates of one test.
 struct TestNoise {
   double stress = 0.0;   ///< quasi-static: RMS stress noise over the record [MPa]; indentation: force noise [N]
-  std::vector<double> stress_local;  ///< quasi-static: local noise per record sample [MPa] (RMS of d3 over +-15 samples)
+  std::vector<double> stress_local;  ///< quasi-static: local noise per record sample [MPa] (reading_noise)
   double modulus = 0.0;  ///< dynamic: |E*| noise [MPa]; dynamic_stiffness: |K*| noise [N/mm]
   double phase = 0.0;    ///< dynamic: phase noise [deg]
   bool known = false;    ///< estimate available (enough samples)
@@ -102,7 +102,9 @@ std::vector<std::string> specimen_warnings(double material_density, const Campai
 std::vector<std::string> coverage_warnings(const Campaign& campaign);
 
 /// Noise-normalised residuals for least squares (diagnose): quasi-static (model - measured)/sigma at up to
-/// `quasi_static_points` evenly spread samples per test; dynamic (|E*| error)/sigma_E and (phase error)/sigma_phase
+/// `quasi_static_points` evenly spread samples per test, sigma the local noise but at least half the test's RMS noise
+/// (weights at most 4x the mean: at the lowest readings the true noise is tiny and model-form error would steer the
+/// fit); dynamic (|E*| error)/sigma_E and (phase error)/sigma_phase
 /// per frequency. Tests without a noise estimate or with a failed run contribute nothing (the latter: huge values).
 std::vector<double> normalised_residuals(const CompareResult& result, int quasi_static_points = 100);
 

@@ -43,31 +43,82 @@ double polynomial_scatter(const std::vector<double>& x, const std::vector<double
   return std::sqrt((A * c - b).squaredNorm() / (n - degree - 1));
 }
 
-std::vector<double> local_branch_noise(const std::vector<double>& y,
-                                       const std::vector<std::pair<std::size_t, std::size_t>>& branches) {
-  const std::size_t N = y.size();
-  std::vector<double> local(N, -1.0);
-  for (const auto& [a, b] : branches) {
-    if (b >= N || b < a + 8) continue;
-    std::vector<double> d3;
-    for (std::size_t i = a; i + 3 <= b; ++i) d3.push_back(y[i + 3] - 3.0 * y[i + 2] + 3.0 * y[i + 1] - y[i]);
-    const std::size_t m = d3.size(), w = 15;
-    for (std::size_t k = 0; k < m; ++k) {
-      const std::size_t lo = k > w ? k - w : 0, hi = std::min(m - 1, k + w);
-      double s2 = 0.0;
-      for (std::size_t q = lo; q <= hi; ++q) s2 += d3[q] * d3[q];
-      const double sigma = std::sqrt(s2 / (hi - lo + 1) / 20.0);
-      for (std::size_t q = a + k; q <= std::min(b, a + k + 3); ++q)
-        local[q] = local[q] < 0.0 ? sigma : std::min(local[q], sigma);
-    }
+namespace {
+
+/// Differences of reading_noise: order 5, d_k = sum_j c_j y[k+j], c = (-1, 5, -10, 10, -5, 1) (binomial, alternating),
+/// sum c_j^2 = 252; a polynomial of degree 4 gives d = 0, a smooth curve h^5 y^(5).
+constexpr int kOrder = 5;
+constexpr double kCoefficient[kOrder + 1] = {-1.0, 5.0, -10.0, 10.0, -5.0, 1.0};
+constexpr double kSumSquares = 252.0;
+
+/// Noise variance model sigma^2 = A y^2 + B of reading_noise.
+struct ReadingVariance {
+  double A = 0.0, B = 0.0;
+  double at(double x) const { return A * x + kSumSquares * B; }  ///< E[d^2] for x = sum c_j^2 y_j^2
+};
+
+/// Weighted least squares of d2 ~ A x + 20 B with A, B >= 0 over the samples `use` marks, weights w.
+ReadingVariance weighted_variance_fit(const std::vector<double>& d2, const std::vector<double>& x,
+                                      const std::vector<double>& w, const std::vector<char>& use) {
+  double sxx = 0.0, sx = 0.0, s1 = 0.0, sxy = 0.0, sy = 0.0;
+  for (std::size_t k = 0; k < d2.size(); ++k) {
+    if (!use[k]) continue;
+    sxx += w[k] * x[k] * x[k], sx += w[k] * x[k], s1 += w[k], sxy += w[k] * x[k] * d2[k], sy += w[k] * d2[k];
   }
-  // Samples not covered (before loading, hold, after unloading) take the nearest covered value.
-  double last = -1.0;
-  for (std::size_t i = 0; i < N; ++i) (local[i] >= 0.0 ? last = local[i] : local[i] = last);
-  last = -1.0;
-  for (std::size_t i = N; i-- > 0;) (local[i] >= 0.0 ? last = local[i] : local[i] = last);
-  if (N == 0 || local.front() < 0.0) return {};
-  return local;
+  ReadingVariance m;
+  const double det = sxx * s1 - sx * sx;
+  if (det > 1e-12 * sxx * s1) {
+    m.A = (s1 * sxy - sx * sy) / det;
+    m.B = (sxx * sy - sx * sxy) / det / kSumSquares;
+  }
+  if (!(det > 1e-12 * sxx * s1) || m.A < 0.0) m = {0.0, sy / s1 / kSumSquares};  // a floor only
+  if (m.B < 0.0) m = {sxy / sxx, 0.0};                                     // relative only
+  return m;
+}
+
+}  // namespace
+
+std::vector<double> reading_noise(const std::vector<double>& y,
+                                  const std::vector<std::pair<std::size_t, std::size_t>>& branches) {
+  std::vector<double> d2, x;  // squared differences, sum c_j^2 y_j^2
+  for (const auto& [a, b] : branches)
+    for (std::size_t i = a; i + kOrder <= b && b < y.size(); ++i) {
+      double d = 0.0, s = 0.0;
+      for (int j = 0; j <= kOrder; ++j) {
+        d += kCoefficient[j] * y[i + j];
+        s += kCoefficient[j] * kCoefficient[j] * y[i + j] * y[i + j];
+      }
+      d2.push_back(d * d);
+      x.push_back(s);
+    }
+  if (d2.size() < 8) return {};
+  // Start: a floor from the median (median of chi2_1 = 0.4549), then iterate weights 1/E[d^2]^2 and the 4-sigma
+  // rejection until the model settles.
+  std::vector<double> sorted = d2;
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  ReadingVariance m{0.0, sorted[sorted.size() / 2] / 0.4549 / kSumSquares};
+  std::vector<double> w(d2.size());
+  std::vector<char> use(d2.size());
+  for (int iteration = 0; iteration < 50; ++iteration) {
+    const double floor = 1e-30 + 1e-12 * m.at(*std::max_element(x.begin(), x.end()));
+    for (std::size_t k = 0; k < d2.size(); ++k) {
+      const double v = std::max(m.at(x[k]), floor);
+      w[k] = 1.0 / (v * v);
+      use[k] = d2[k] <= 16.0 * v;
+    }
+    const ReadingVariance next = weighted_variance_fit(d2, x, w, use);
+    const bool settled = std::abs(next.A - m.A) <= 1e-6 * std::abs(m.A) + 1e-300 &&
+                         std::abs(next.B - m.B) <= 1e-6 * std::abs(m.B) + 1e-300;
+    m = next;
+    if (settled) break;
+  }
+  std::vector<double> sigma;
+  for (double v : y) sigma.push_back(std::sqrt(m.A * v * v + m.B));
+  // A relative-only fit (B = 0) would give zero noise at zero force, and infinite normalised residuals there: no
+  // sample is credited with less than 10 % of the record's RMS noise.
+  const double lowest = 0.1 * rms_of(sigma);
+  for (double& x : sigma) x = std::max(x, lowest);
+  return sigma;
 }
 
 double rms_of(const std::vector<double>& v) {

@@ -8,9 +8,9 @@
 /// Spectra (modulus or stiffness and phase vs frequency): regions all and low/mid/high thirds of the
 /// frequency list, each for the amplitude and for the phase.
 /// Noise estimates use the data only, never the model:
-///   curves: third differences d3 on each monotone branch (a local-polynomial high-pass that removes any
-///     quadratic trend), sigma = RMS(d3)/sqrt(20) over +-15 samples (local: each region judged against
-///     its own noise);
+///   curves: fifth differences on each smooth branch (loading, hold, unloading; a high-pass that removes any
+///     quartic trend) fitted by a noise that depends on the reading, sigma^2 = A y^2 + B (reading_noise):
+///     each sample, and so each region, is judged against the noise at its own reading;
 ///   spectra: scatter about a least-squares polynomial in log f (cubic from 8 frequencies, quadratic
 ///     from 5, else unknown), sigma = sqrt(SSR / (n - p)).
 #include <cstddef>
@@ -39,11 +39,17 @@ double third_difference_noise(const std::vector<double>& y);
 /// Residual standard deviation of y about a least-squares polynomial of `degree` in x: sqrt(SSR/(n - degree - 1)).
 double polynomial_scatter(const std::vector<double>& x, const std::vector<double>& y, int degree);
 
-/// Local noise of each sample of `y` [unit of y]: third differences on each branch [first, last] (inclusive
-/// sample indices; branches shorter than 8 samples are skipped), RMS over +-15 differences / sqrt(20);
-/// samples outside every branch take the nearest branch value. Empty when no branch was long enough.
-std::vector<double> local_branch_noise(const std::vector<double>& y,
-                                       const std::vector<std::pair<std::size_t, std::size_t>>& branches);
+/// Noise standard deviation of each sample of a record `y` [unit of y] whose noise depends on the reading:
+/// sigma(y)^2 = A y^2 + B (a load cell's "percent of reading" plus a floor; A, B >= 0; docs/physics.md 9).
+/// A and B are fitted to the squared fifth differences d_k = sum_j c_j y[k+j], c = (-1, 5, -10, 10, -5, 1), inside
+/// each branch [first, last] (inclusive sample indices: the smooth pieces of the record, e.g. loading, hold and
+/// unloading; no difference spans a corner), whose expectation is sum_j c_j^2 sigma^2(y[k+j]), by least squares
+/// weighted with the inverse variance of d_k^2 (iterated) and with differences beyond 4 standard deviations left
+/// out (a corner, a fast relaxation: signal, not noise). Every sample gets sigma(y_i), those outside the branches
+/// too, and at least 10 % of the record's RMS noise (a relative-only fit gives no zero noise at zero force); empty
+/// when the branches hold fewer than 8 differences.
+std::vector<double> reading_noise(const std::vector<double>& y,
+                                  const std::vector<std::pair<std::size_t, std::size_t>>& branches);
 
 /// RMS of the local noise over all samples (0 for an empty vector).
 double rms_of(const std::vector<double>& v);

@@ -68,7 +68,7 @@ TestNoise indentation_noise(const IndentationCurve& record) {
   const Branches b = branches(record.indentation);
   TestNoise n;
   const std::vector<double> local =
-      local_branch_noise(record.force, {{0, b.first}, {b.last, record.force.size() - 1}});
+      reading_noise(record.force, {{0, b.first}, {b.first, b.last}, {b.last, record.force.size() - 1}});
   n.stress = rms_of(local);
   n.known = n.stress > 0.0;
   if (n.known) n.stress_local = local;

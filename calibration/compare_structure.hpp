@@ -10,7 +10,7 @@
 /// measured samples outside the run's range of the branch are left out with a warning (the run does not
 /// reach the measured indentation: another protocol or specimen). Regions (N): all, loading, unloading,
 /// low/mid/high_indentation (thirds of x_max), hysteresis_area (N mm); NRMSE relative to the peak measured
-/// force; noise: local third differences of the measured force on each branch.
+/// force; noise: the reading-dependent noise of the measured force (compare_metrics.hpp reading_noise).
 /// Dynamic stiffness (kind "dynamic_stiffness"): the run's |K*| and phase interpolated linearly in log f at
 /// the measured frequencies (outside the run's range: left out with a warning). Regions: all_stiffness
 /// (N/mm), all_phase (deg), band_low/mid/high_stiffness and _phase (thirds of the compared frequencies);

@@ -246,7 +246,7 @@ CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector
     fit.message = summary.BriefReport();
     if (summary.termination_type == ceres::NO_CONVERGENCE)
       fit.warning = "did not converge within " + std::to_string(options.max_iterations) +
-                    " iterations; ranked with the best parameters found (chi2/N may still fall: raise max_iterations)";
+                    " iterations; ranked with the best parameters found (chi2/N may still fall: raise --max-iterations)";
     const auto r = model.compare_at(u.data());
     if (!r) throw std::runtime_error("the model run fails at the fitted parameters");
     fit.compare = *r;

@@ -230,9 +230,26 @@ QuasiStaticProtocol protocol_of(const QuasiStaticTest& test, const Segments& seg
   p.max_strain = segments.peak_strain;
   p.hold_s = segments.hold_duration;
   p.sample_hz = sample_hz;
-  p.preload_cycle = false;
-  p.rest_s = 0.0;
+  p.prior = test.prior;
+  p.lift_off = test.lift_off;
   p.lateral = load_mode(test.lateral);
+  return p;
+}
+
+DynamicProtocol protocol_of(const DynamicTest& test, int steps_per_cycle, double default_preload_rate_mm_min) {
+  DynamicProtocol p;
+  p.name = test.name;
+  p.preload_strain = test.preload_strain;
+  p.preload_rate_mm_min = test.preload_rate_mm_min > 0.0 ? test.preload_rate_mm_min : default_preload_rate_mm_min;
+  p.dwell_s = test.dwell_s;
+  p.prior = test.prior;
+  p.lift_off = test.lift_off;
+  p.acceleration_amplitude = test.acceleration_amplitude / 1000.0;  // mm/s^2 -> m/s^2
+  p.amplitude_peak_to_peak = test.amplitude_peak_to_peak;
+  p.frequencies_Hz = test.moduli.frequency;
+  p.cycles = test.cycles;
+  p.fit_cycles = test.fit_cycles;
+  p.steps_per_cycle = steps_per_cycle;
   return p;
 }
 

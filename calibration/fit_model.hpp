@@ -94,9 +94,14 @@ DynamicModuli model_dynamic_moduli(const material::Material& model, const materi
                                    double preload, const std::vector<double>& frequency,
                                    Lateral lateral = Lateral::free, const DynamicSchedule* schedule = nullptr);
 
-/// The protocol of a recorded quasi-static test: crosshead rate, the record's peak strain and hold,
-/// starting relaxed (the record after any preflex), sampled at `sample_hz`.
+/// The protocol of a recorded quasi-static test: crosshead rate, the record's peak strain and hold, the
+/// campaign's preflex, rest and lift-off keys (the record starts after the rest), sampled at `sample_hz`.
 QuasiStaticProtocol protocol_of(const QuasiStaticTest& test, const Segments& segments, double sample_hz);
+
+/// The protocol of a dynamic test as its campaign describes it (preflex, rest, preload ramp at the test's
+/// preload_rate_mm_min or `default_preload_rate_mm_min` when it gives none, dwell, amplitude convention,
+/// cycles and fit_cycles per frequency, lift-off), run at `steps_per_cycle` time steps a cycle.
+DynamicProtocol protocol_of(const DynamicTest& test, int steps_per_cycle, double default_preload_rate_mm_min);
 
 /// Median sampling rate of a record [Hz].
 double sampling_rate(const StressStrainRecord& record);

@@ -81,6 +81,44 @@ std::string optional_choice(const io::JsonNode& node, const std::string& key, co
   return v ? v->choice(choices) : fallback;
 }
 
+/// Quasi-static truth: the preflex from "preload_cycle" (older: true = one cycle to max_strain, the default) and
+/// "rest_s", or from the protocol keys (not both).
+PriorLoading read_legacy_preflex(const io::JsonNode& q, double max_strain) {
+  for (const char* key : {"preflex_cycles", "rest_between_tests_s"})
+    if (q.has(key) && (q.has("preload_cycle") || q.has("rest_s")))
+      q.at(key).fail("give either the protocol keys or the older preload_cycle/rest_s, not both");
+  PriorLoading legacy{1, max_strain, optional_number(q, "rest_s", 300.0, non_negative_value, ">= 0")};
+  if (const auto b = q.find("preload_cycle")) legacy.preflex_cycles = b->boolean() ? 1 : 0;
+  return read_prior_loading(q, legacy);
+}
+
+/// The preflex cycles (to prior.preflex_strain and back at speed_mm_s, `steps_per_s` increments a second) and
+/// the rest after them; returns their duration [s] (0 without preflex).
+double append_prior_loading(std::vector<Segment>& segments, const PriorLoading& prior, double thickness,
+                            double speed_mm_s, double steps_per_s) {
+  if (prior.preflex_cycles == 0) return 0.0;
+  const double ramp_s = prior.preflex_strain * thickness / speed_mm_s;
+  const int steps = static_cast<int>(std::ceil(ramp_s * steps_per_s));
+  for (int c = 0; c < prior.preflex_cycles; ++c) {
+    segments.push_back(ramp(-prior.preflex_strain, ramp_s, steps));
+    segments.push_back(ramp(0.0, ramp_s, steps));
+  }
+  if (prior.rest_s > 0.0) segments.push_back(hold(prior.rest_s, static_cast<int>(std::ceil(prior.rest_s))));
+  return 2.0 * ramp_s * prior.preflex_cycles + prior.rest_s;
+}
+
+/// The preflex keys of a campaign test (only when there is a preflex).
+void write_prior_loading(const PriorLoading& prior, nlohmann::json& test) {
+  if (prior.preflex_cycles == 0) return;
+  test["preflex_cycles"] = prior.preflex_cycles;
+  test["preflex_strain"] = prior.preflex_strain;
+  test["rest_between_tests_s"] = prior.rest_s;
+}
+
+material::AxisControl axis_control(bool lift_off) {
+  return lift_off ? AxisControl::platen : AxisControl::displacement;
+}
+
 }  // namespace
 
 double DynamicProtocol::displacement_amplitude_mm(double f_Hz) const {
@@ -118,7 +156,7 @@ LabTruth read_lab_truth(const std::filesystem::path& file) {
     for (std::size_t i = 0; i < count; ++i) {
       const io::JsonNode q = (*list)[i];
       q.expect_object({"name", "rate_mm_min", "max_strain", "hold_s", "sample_hz", "preload_cycle", "rest_s",
-                       "lateral", "use"});
+                       "lateral", "use", "preflex_cycles", "preflex_strain", "rest_between_tests_s", "lift_off"});
       QuasiStaticProtocol p;
       p.name = q.at("name").string();
       p.rate_mm_min = q.at("rate_mm_min").number_where(positive_value, "> 0");
@@ -126,8 +164,8 @@ LabTruth read_lab_truth(const std::filesystem::path& file) {
                                      "in (0, 0.95) (nominal compression)");
       p.hold_s = optional_number(q, "hold_s", 2.0, non_negative_value, ">= 0");
       p.sample_hz = optional_number(q, "sample_hz", 10.0, positive_value, "> 0");
-      if (const auto b = q.find("preload_cycle")) p.preload_cycle = b->boolean();
-      p.rest_s = optional_number(q, "rest_s", 300.0, non_negative_value, ">= 0");
+      p.prior = read_legacy_preflex(q, p.max_strain);
+      if (const auto l = q.find("lift_off")) p.lift_off = l->boolean();
       p.lateral = optional_choice(q, "lateral", {"free", "constrained"}, "free") == "free"
                       ? material::LoadMode::uniaxial_free
                       : material::LoadMode::uniaxial_constrained;
@@ -140,13 +178,17 @@ LabTruth read_lab_truth(const std::filesystem::path& file) {
     for (std::size_t i = 0; i < count; ++i) {
       const io::JsonNode d = (*list)[i];
       d.expect_object({"name", "preload_strain", "preload_rate_mm_min", "acceleration_amplitude_m_s2", "amplitude_is",
-                       "frequencies_Hz", "cycles", "fit_cycles", "steps_per_cycle", "use"});
+                       "amplitude_convention", "frequencies_Hz", "cycles", "fit_cycles", "steps_per_cycle", "use",
+                       "dwell_before_sweep_s", "preflex_cycles", "preflex_strain", "rest_between_tests_s", "lift_off"});
       DynamicProtocol p;
       p.name = d.at("name").string();
       p.preload_strain = d.at("preload_strain").number_where([](double x) { return x > 0.0 && x < 0.9; }, "in (0, 0.9)");
       p.preload_rate_mm_min = optional_number(d, "preload_rate_mm_min", 30.0, positive_value, "> 0");
       p.acceleration_amplitude = d.at("acceleration_amplitude_m_s2").number_where(positive_value, "> 0");
-      p.amplitude_peak_to_peak = optional_choice(d, "amplitude_is", {"peak_to_peak", "peak"}, "peak_to_peak") == "peak_to_peak";
+      p.amplitude_peak_to_peak = read_peak_to_peak(d);
+      p.dwell_s = optional_number(d, "dwell_before_sweep_s", 0.0, non_negative_value, ">= 0");
+      p.prior = read_prior_loading(d);
+      if (const auto l = d.find("lift_off")) p.lift_off = l->boolean();
       const io::JsonNode freqs = d.at("frequencies_Hz");
       const std::size_t nf = freqs.expect_array(3, 1000);
       for (std::size_t k = 0; k < nf; ++k) p.frequencies_Hz.push_back(freqs[k].number_where(positive_value, "> 0"));
@@ -169,20 +211,11 @@ QuasiStaticRecord run_quasi_static(const material::Material& model, const LabSpe
   const double ramp_s = p.max_strain * H / speed;
   const int ramp_steps = static_cast<int>(std::ceil(ramp_s * p.sample_hz));
   std::vector<Segment> segments;
-  double test_start = 0.0;
-  if (p.preload_cycle) {
-    segments.push_back(ramp(-p.max_strain, ramp_s, ramp_steps));
-    segments.push_back(ramp(0.0, ramp_s, ramp_steps));
-    test_start = 2.0 * ramp_s;
-    if (p.rest_s > 0.0) {
-      segments.push_back(hold(p.rest_s, static_cast<int>(std::ceil(p.rest_s))));
-      test_start += p.rest_s;
-    }
-  }
+  const double test_start = append_prior_loading(segments, p.prior, H, speed, p.sample_hz);
   segments.push_back(ramp(-p.max_strain, ramp_s, ramp_steps));
   if (p.hold_s > 0.0) segments.push_back(hold(p.hold_s, static_cast<int>(std::ceil(p.hold_s * p.sample_hz))));
   segments.push_back(ramp(0.0, ramp_s, ramp_steps));
-  const material::History history = material::build_history(segments, AxisControl::platen);
+  const material::History history = material::build_history(segments, axis_control(p.lift_off));
   const material::PointResult r = material::run_point(model, p.lateral, history);
 
   QuasiStaticRecord rec;
@@ -207,10 +240,17 @@ void add_force_noise(QuasiStaticRecord& record, const LabNoise& noise, unsigned 
 DynamicRecord run_dynamic(const material::Material& model, const LabSpecimen& specimen, const DynamicProtocol& p,
                           const LabNoise& noise, unsigned long long stream) {
   const double H = specimen.thickness;
-  const double preload_s = p.preload_strain * H / (p.preload_rate_mm_min / 60.0);
-  std::vector<Segment> segments{ramp(-p.preload_strain, preload_s, static_cast<int>(std::ceil(preload_s * 5.0)))};
+  const double speed = p.preload_rate_mm_min / 60.0;  // mm/s
+  const double preload_s = p.preload_strain * H / speed;
+  std::vector<Segment> segments;
+  double t = append_prior_loading(segments, p.prior, H, speed, 5.0);
+  segments.push_back(ramp(-p.preload_strain, preload_s, static_cast<int>(std::ceil(preload_s * 5.0))));
+  t += preload_s;
+  if (p.dwell_s > 0.0) {
+    segments.push_back(hold(p.dwell_s, static_cast<int>(std::ceil(p.dwell_s * 20.0))));
+    t += p.dwell_s;
+  }
   std::vector<double> start;  // start time of each frequency's sine
-  double t = preload_s;
   for (double f : p.frequencies_Hz) {
     Segment s;
     s.kind = Segment::Kind::sine;
@@ -222,7 +262,7 @@ DynamicRecord run_dynamic(const material::Material& model, const LabSpecimen& sp
     start.push_back(t);
     t += p.cycles / f;
   }
-  const material::History history = material::build_history(segments, AxisControl::displacement);
+  const material::History history = material::build_history(segments, axis_control(p.lift_off));
   const material::PointResult r = material::run_point(model, material::LoadMode::uniaxial_free, history);
 
   const bool noisy = noise.force_relative > 0.0 || noise.force_floor > 0.0;
@@ -290,7 +330,9 @@ void run_lab(const LabTruth& truth, const std::filesystem::path& out_dir, std::o
     write_csv(tmp / file, {"time_s", "displacement_mm", "force_N"}, {rec.time_s, rec.displacement_mm, rec.force_N},
               {"synthetic quasi-static test from cushion lab: " + p.name, "compression positive"});
     nlohmann::json t{{"kind", "quasi_static"}, {"name", p.name}, {"file", file}, {"rate_mm_min", p.rate_mm_min},
-                     {"lateral", p.lateral == material::LoadMode::uniaxial_free ? "free" : "constrained"}};
+                     {"lateral", p.lateral == material::LoadMode::uniaxial_free ? "free" : "constrained"},
+                     {"lift_off", p.lift_off}};
+    write_prior_loading(p.prior, t);
     if (!p.use.empty()) t["use"] = p.use;
     manifest["tests"].push_back(t);
     double fmax = 0.0;
@@ -306,7 +348,11 @@ void run_lab(const LabTruth& truth, const std::filesystem::path& out_dir, std::o
               {"synthetic dynamic test from cushion lab: " + p.name,
                "nominal stress amplitude over nominal strain amplitude; phase of stress relative to strain"});
     nlohmann::json t{{"kind", "dynamic"}, {"name", p.name}, {"file", file}, {"preload_strain", p.preload_strain},
-                     {"acceleration_amplitude_m_s2", p.acceleration_amplitude}};
+                     {"acceleration_amplitude_m_s2", p.acceleration_amplitude},
+                     {"amplitude_convention", p.amplitude_peak_to_peak ? "peak_to_peak" : "peak"},
+                     {"preload_rate_mm_min", p.preload_rate_mm_min}, {"dwell_before_sweep_s", p.dwell_s},
+                     {"cycles", p.cycles}, {"fit_cycles", p.fit_cycles}, {"lift_off", p.lift_off}};
+    write_prior_loading(p.prior, t);
     if (!p.use.empty()) t["use"] = p.use;
     manifest["tests"].push_back(t);
     log << "lab: " << p.name << ": dynamic about " << p.preload_strain * 100.0 << "% preload, "

@@ -17,10 +17,16 @@
 ///                "frequencies_Hz": [1, 2, ..., 20], "cycles": 20, "fit_cycles": 10,
 ///                "steps_per_cycle": 64, "use": "calibration"}]
 /// }
+/// Both kinds also take the campaign's protocol keys (protocol.hpp: preflex_cycles, preflex_strain,
+/// rest_between_tests_s, lift_off; dynamic: dwell_before_sweep_s, amplitude_convention); quasi-static
+/// "preload_cycle" (older, default true) is one preflex cycle to max_strain, "rest_s" the rest after it.
+/// The campaign written records every protocol key the lab simulated, so that compare and diagnose model
+/// the tests as they were run.
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "calibration/protocol.hpp"
 #include "io/output_folder.hpp"
 #include "material/io/material_file.hpp"
 #include "material/point_driver.hpp"
@@ -48,17 +54,21 @@ struct QuasiStaticProtocol {
   double max_strain = 0.75;    ///< nominal compression at the turn [-]
   double hold_s = 2.0;         ///< hold at the maximum [s]
   double sample_hz = 10.0;     ///< recorded samples per second
-  bool preload_cycle = true;   ///< a preflex to 60 mm and back at the same rate, then rest
-  double rest_s = 300.0;       ///< rest after the preload cycle [s]
+  PriorLoading prior;          ///< preflex cycles at the test's rate, then rest (default: none)
+  bool lift_off = true;        ///< a platen that only pushes (force clipped at zero), else bonded platens
   material::LoadMode lateral = material::LoadMode::uniaxial_free;
   std::string use;             ///< "calibration", "validation" or empty (manifest default)
 };
 
-/// Dynamic test protocol (paper section 2.3): preload, then sines at each frequency.
+/// Dynamic test protocol (paper section 2.3): preflex and rest (if any), preload ramp, dwell, then sines at
+/// each frequency in one continuous history.
 struct DynamicProtocol {
   std::string name = "dynamic";
   double preload_strain = 0.25;        ///< nominal compression [-]
-  double preload_rate_mm_min = 30.0;
+  double preload_rate_mm_min = 30.0;   ///< crosshead speed of the preload ramp and of any preflex
+  double dwell_s = 0.0;                ///< hold at the preload before the first frequency [s]
+  PriorLoading prior;                  ///< preflex cycles and rest before the preload (default: none)
+  bool lift_off = false;               ///< a platen that only pushes (force clipped at zero), else bonded
   double acceleration_amplitude = 0.25;  ///< [m/s^2]
   bool amplitude_peak_to_peak = true;    ///< the paper writes "peak-to-peak value of 0.25 m/s^2"
   std::vector<double> frequencies_Hz;
@@ -95,7 +105,10 @@ struct DynamicRecord {
 /// Runs one quasi-static protocol on the material (no noise).
 QuasiStaticRecord run_quasi_static(const material::Material& model, const LabSpecimen& specimen,
                                    const QuasiStaticProtocol& protocol);
-/// Runs one dynamic protocol; noise (if any) is added to the force samples before the sine fit.
+/// Runs one dynamic protocol: THE forward model of a dynamic test (the lab, compare and diagnose all call
+/// it); noise (if any) is added to the force samples before the sine fit. The sines take
+/// protocol.steps_per_cycle time steps a cycle; |E*| and phase from sine + cosine + offset + drift fits to
+/// stress and strain over the last fit_cycles cycles of each frequency.
 DynamicRecord run_dynamic(const material::Material& model, const LabSpecimen& specimen,
                           const DynamicProtocol& protocol, const LabNoise& noise, unsigned long long stream);
 

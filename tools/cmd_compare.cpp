@@ -14,6 +14,7 @@
 #include "calibration/run_history.hpp"
 #include "material/io/material_file.hpp"
 #include "tools/command.hpp"
+#include "tools/forward_model_cli.hpp"
 #include "tools/gnuplot.hpp"
 
 namespace {
@@ -23,7 +24,7 @@ struct CompareCli {
   std::vector<std::string> runs;
   cushion::io::OutputFolder out;
   std::string label, history;
-  int cycles = 5, steps = 40;
+  cushion::calibration::CompareOptions model;
 };
 
 /// Before any computation: every --run folder exists, the output folder and the history folder can be written.
@@ -56,9 +57,7 @@ const cushion::tools::Registrar reg{"compare", [](CLI::App& app) {
                   "each test uses the first folder that has its file)");
   sub->add_option("--label", opt->label, "model version name for the report and the history (default: material name)");
   sub->add_option("--history", opt->history, "folder of the run history (history.csv and history_plot.png), appended");
-  sub->add_option("--dynamic-cycles", opt->cycles, "model: cycles per frequency (default 5; last 2 measured)")
-      ->check(CLI::Range(3, 100));
-  sub->add_option("--steps-per-cycle", opt->steps, "model: time steps per cycle (default 40)")->check(CLI::Range(16, 1000));
+  cushion::tools::add_forward_model_options(sub, opt->model);
   sub->callback([opt] {
     using namespace cushion::calibration;
     const bool with_material = opt->files.size() == 2;
@@ -66,9 +65,7 @@ const cushion::tools::Registrar reg{"compare", [](CLI::App& app) {
       throw CLI::ValidationError("compare", "give MATERIAL.json CAMPAIGN.json, or CAMPAIGN.json with --run RUN_DIR");
     check_folders(*opt);
     const Campaign campaign = read_campaign(opt->files.back());
-    CompareOptions o;
-    o.dynamic_cycles = opt->cycles;
-    o.dynamic_steps_per_cycle = opt->steps;
+    const CompareOptions& o = opt->model;
     CompareResult r;
     std::string label = opt->label;
     if (with_material) {

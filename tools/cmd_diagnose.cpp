@@ -17,6 +17,7 @@
 #include "material/io/material_file.hpp"
 #include "tools/command.hpp"
 #include "tools/fit_job.hpp"
+#include "tools/forward_model_cli.hpp"
 #include "tools/gnuplot.hpp"
 
 namespace {
@@ -41,9 +42,8 @@ struct DiagnoseCli {
   std::vector<std::string> files;  // [material] campaign
   cushion::io::OutputFolder out;
   std::vector<std::string> candidates;
-  int threads = 2;
-  bool joint_base = false;
   bool no_held_out = false;
+  cushion::calibration::DiagnoseOptions options;
 };
 
 const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
@@ -58,20 +58,25 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
   cushion::tools::add_output_folder_options(sub, opt->out, "output folder (diagnosis.md, report.json, fragment.json, plots)");
   opt->out.markers = {"diagnosis.md"};
   sub->add_option("--candidates", opt->candidates, "only these effect kinds (default: the whole catalogue)")->delimiter(',');
-  sub->add_flag("--joint-base", opt->joint_base,
+  sub->add_flag("--joint-base", opt->options.joint_base,
                 "fit each effect together with the base moduli (for a baseline calibrated on data that contain it)");
   sub->add_flag("--no-held-out", opt->no_held_out,
                 "name the best-supported effect without the leave-one-test-out check (faster; in-sample evidence only)");
-  sub->add_option("--threads", opt->threads, "candidates fitted in parallel (default 2)")->check(CLI::Range(1, 2));
+  sub->add_option("--threads", opt->options.threads, "candidates fitted in parallel (default 2)")->check(CLI::Range(1, 2));
+  sub->add_option("--max-iterations", opt->options.max_iterations,
+                  "Levenberg-Marquardt iterations per candidate (default " +
+                      std::to_string(cushion::calibration::DiagnoseOptions{}.max_iterations) +
+                      "; a candidate stopped by the limit is ranked with a warning)")
+      ->check(CLI::Range(1, 1000));
+  cushion::tools::add_forward_model_options(sub, opt->options.compare);
   sub->callback([opt] {
     using namespace cushion::calibration;
     const bool raw = opt->files.size() == 1;
     opt->out.inputs.assign(opt->files.begin(), opt->files.end());
     cushion::io::check_output_folder(opt->out);
-    DiagnoseOptions o;
-    o.threads = opt->threads;
+    DiagnoseOptions o = opt->options;
     o.candidates = opt->candidates;
-    o.joint_base = opt->joint_base || raw;
+    o.joint_base = o.joint_base || raw;
     o.held_out = !opt->no_held_out;
     for (const auto& k : o.candidates)
       if (!cushion::material::find_effect(k)) throw cushion::InputError("--candidates: unknown effect kind '" + k + "'");

@@ -244,7 +244,7 @@ ForeignCampaign make_foreign_campaign(ForeignCase c, const fs::path& dir) {
   for (const auto& [rate_mm_min, hz] : rates) {
     calibration::QuasiStaticProtocol p;
     p.name = "qs_" + std::to_string(static_cast<int>(rate_mm_min));
-    p.rate_mm_min = rate_mm_min, p.sample_hz = hz, p.preload_cycle = false;
+    p.rate_mm_min = rate_mm_min, p.sample_hz = hz, p.prior.preflex_cycles = 0;
     calibration::QuasiStaticRecord rec = calibration::run_quasi_static(*model, specimen, p);
     calibration::add_force_noise(rec, noise, stream++);
     write_csv(dir / (p.name + ".csv"), {"time_s", "displacement_mm", "force_N"},
@@ -263,6 +263,7 @@ ForeignCampaign make_foreign_campaign(ForeignCase c, const fs::path& dir) {
               {rec.frequency_Hz, rec.dynamic_modulus_kPa, rec.phase_deg}, {"SYNTHETIC foreign test " + p.name});
     manifest["tests"].push_back({{"kind", "dynamic"}, {"name", p.name}, {"file", p.name + ".csv"},
                                  {"preload_strain", preload}, {"acceleration_amplitude_m_s2", p.acceleration_amplitude},
+                                 {"cycles", p.cycles}, {"fit_cycles", p.fit_cycles},  // the protocol as run
                                  {"use", preload == 0.25 ? "calibration" : "validation"}});
   }
   out.manifest = dir / "campaign.json";

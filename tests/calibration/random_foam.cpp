@@ -111,7 +111,7 @@ fs::path make_random_foam_campaign(const RandomFoam& foam, const fs::path& dir) 
     q.max_strain = 0.75;
     q.hold_s = 2.0;
     q.sample_hz = hz[k];
-    q.preload_cycle = false;
+    q.prior.preflex_cycles = 0;
     q.use = "calibration";
     truth.quasi_static.push_back(q);
   }

@@ -153,3 +153,58 @@ TEST_F(Campaign, MissingTestFileIsNamed) {
   const std::string m = error_of(good());
   EXPECT_NE(m.find("dyn_25.csv"), std::string::npos) << m;
 }
+
+// Protocol keys (README "Protocol keys"): absent -> documented defaults; given -> read in their units.
+TEST_F(Campaign, ProtocolKeysDefaultsAndValues) {
+  const auto d = cal::read_campaign(manifest(good()));
+  EXPECT_EQ(d.quasi_static[0].prior.preflex_cycles, 0);
+  EXPECT_TRUE(d.quasi_static[0].lift_off);
+  const cal::DynamicTest& dd = d.dynamic[0];
+  EXPECT_EQ(dd.cycles, 20);
+  EXPECT_EQ(dd.fit_cycles, 10);
+  EXPECT_DOUBLE_EQ(dd.dwell_s, 0.0);
+  EXPECT_TRUE(dd.amplitude_peak_to_peak);
+  EXPECT_FALSE(dd.lift_off);
+  EXPECT_EQ(dd.prior.preflex_cycles, 0);
+  const auto c = cal::read_campaign(manifest(good(
+      R"(, "amplitude_convention": "peak", "dwell_before_sweep_s": 5, "cycles": 8, "fit_cycles": 4, "preflex_cycles": 3,
+         "preflex_strain": 0.6, "rest_between_tests_s": 60, "lift_off": true, "preload_rate_mm_min": 12)")));
+  const cal::DynamicTest& t = c.dynamic[0];
+  EXPECT_FALSE(t.amplitude_peak_to_peak);
+  EXPECT_DOUBLE_EQ(t.dwell_s, 5.0);
+  EXPECT_EQ(t.cycles, 8);
+  EXPECT_EQ(t.fit_cycles, 4);
+  EXPECT_EQ(t.prior.preflex_cycles, 3);
+  EXPECT_DOUBLE_EQ(t.prior.preflex_strain, 0.6);
+  EXPECT_DOUBLE_EQ(t.prior.rest_s, 60.0);
+  EXPECT_TRUE(t.lift_off);
+  EXPECT_DOUBLE_EQ(t.preload_rate_mm_min, 12.0);
+  EXPECT_FALSE(cal::read_campaign(manifest(good(R"(, "amplitude_is": "peak")"))).dynamic[0].amplitude_peak_to_peak);
+}
+
+TEST_F(Campaign, BadProtocolKeysNameTheKey) {
+  auto expect = [&](const std::string& extra, const std::string& key) {
+    const std::string m = error_of(good(extra));
+    EXPECT_NE(m.find("campaign.json"), std::string::npos) << m;
+    EXPECT_NE(m.find(key), std::string::npos) << extra << " -> " << m;
+  };
+  expect(R"(, "amplitude_convention": "rms")", "amplitude_convention");
+  expect(R"(, "amplitude_convention": "peak", "amplitude_is": "peak")", "amplitude_is");
+  expect(R"(, "dwell_before_sweep_s": -1)", "dwell_before_sweep_s");
+  expect(R"(, "cycles": 0)", "cycles");
+  expect(R"(, "cycles": 2.5)", "cycles");
+  expect(R"(, "cycles": 8, "fit_cycles": 9)", "fit_cycles");
+  expect(R"(, "cycles": 8)", "cycles");  // fewer than the default fit_cycles 10
+  expect(R"(, "preflex_cycles": -1)", "preflex_cycles");
+  expect(R"(, "preflex_cycles": 2, "preflex_strain": 1.2)", "preflex_strain");
+  expect(R"(, "preflex_strain": 0.5)", "preflex_strain");  // without preflex cycles
+  expect(R"(, "rest_between_tests_s": -3)", "rest_between_tests_s");
+  expect(R"(, "lift_off": "yes")", "lift_off");
+  expect(R"(, "dwell_s": 5)", "dwell_s");  // unknown key
+  const std::string t = good();
+  const std::string qs = std::string(t).replace(t.find("\"rate_mm_min\": 120"), 18, "\"rate_mm_min\": 120, \"lift_off\": 1");
+  EXPECT_NE(error_of(qs).find("lift_off"), std::string::npos) << error_of(qs);
+  const std::string qs_dwell =
+      std::string(t).replace(t.find("\"rate_mm_min\": 120"), 18, "\"rate_mm_min\": 120, \"dwell_before_sweep_s\": 1");
+  EXPECT_NE(error_of(qs_dwell).find("dwell_before_sweep_s"), std::string::npos) << error_of(qs_dwell);
+}

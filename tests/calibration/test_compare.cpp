@@ -3,9 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 #include <random>
 
 #include "calibration/compare.hpp"
+#include "calibration/lab.hpp"
 #include "material/io/material_file.hpp"
 
 namespace cc = cushion::calibration;
@@ -61,7 +63,9 @@ TEST(Compare, TruthAgainstItsOwnCampaignIsAtTheNoiseLevel) {
     SCOPED_TRACE(t.name);
     ASSERT_TRUE(t.failure.empty()) << t.failure;
     ASSERT_TRUE(t.noise.known);
-    EXPECT_GT(t.noise_ratio(), 0.3);   // sees the noise (dynamic: the scatter about a cubic in log f overestimates it)
+    // Sees the noise. Dynamic: the model runs the lab's own schedule, so the error is the measurement noise of
+    // |E*| and phase alone, which the scatter about a cubic in log f overestimates (it also holds lack of fit).
+    EXPECT_GT(t.noise_ratio(), t.kind == "dynamic" ? 0.1 : 0.3);
     EXPECT_LE(t.noise_ratio(), 1.5);
   }
   EXPECT_TRUE(r.at_noise_level(1.5));
@@ -84,4 +88,72 @@ TEST(Compare, MissingEffectShowsBeyondNoiseAndLocatesTheRate) {
   EXPECT_GT(fast->region("all")->nrmse, 2.0 * slow->region("all")->nrmse);
   // Residual vector: 100 samples per quasi-static test, 2 per frequency.
   EXPECT_EQ(cc::normalised_residuals(r, 100).size(), 3u * 100u + 2u * 2u * 10u);
+}
+
+namespace {
+
+/// A noisy lab record of the control truth and its true per-sample noise [MPa]: force noise
+/// sd = hypot(relative x reading, floor_N), the lab's (and a load cell's) model.
+struct KnownNoiseRecord {
+  cc::QuasiStaticTest test;
+  std::vector<double> true_sigma;
+};
+
+KnownNoiseRecord known_noise_record(double rate_mm_min, double sample_hz, double relative, double floor_N,
+                                    unsigned long long seed) {
+  const auto truth = cushion::material::read_material_file(hidden() / "truth_material_control.json");
+  cc::QuasiStaticProtocol p;
+  p.rate_mm_min = rate_mm_min;
+  p.sample_hz = sample_hz;
+  const cc::LabSpecimen lab;
+  cc::QuasiStaticRecord rec = cc::run_quasi_static(*truth.model, lab, p);
+  KnownNoiseRecord k;
+  for (double f : rec.force_N) k.true_sigma.push_back(std::hypot(relative * f, floor_N) / lab.area());
+  cc::add_force_noise(rec, cc::LabNoise{seed, relative, floor_N}, 0);
+  const cc::Specimen specimen{lab.length, lab.width, lab.thickness, 6.5e-11};
+  k.test.name = "qs_" + std::to_string(static_cast<int>(rate_mm_min));
+  k.test.rate = rate_mm_min / 60.0;
+  k.test.record = cc::to_nominal("synthetic", rec.time_s, rec.displacement_mm, rec.force_N, specimen);
+  return k;
+}
+
+double rms_over(const std::vector<double>& v, std::size_t first, std::size_t last) {
+  double s = 0.0;
+  for (std::size_t i = first; i <= last; ++i) s += v[i] * v[i];
+  return std::sqrt(s / (last - first + 1));
+}
+
+}  // namespace
+
+// The quasi-static noise estimate (reading_noise: sigma^2 = A stress^2 + B from fifth differences on the
+// loading, hold and unloading branches) against the known noise of synthetic records, at every rate of the
+// hidden-effect and foreign campaigns, the fastest included (2 s hold at peak force: 33 of 273 samples at
+// 480 mm/min, 100 of 460 at 600 mm/min and 50 Hz), for a load cell with a relative noise and a floor and
+// for a floor alone: the RMS over the compared samples within 15 % of the truth, and over the hold too with a
+// relative noise.
+// (The former local estimate gave 0.072 for a true 0.099 kPa at 480 mm/min: the hold's noise was missed.)
+TEST(CompareNoise, ReadingNoiseRecoversTheKnownNoiseAtEveryRateHoldIncluded) {
+  struct Rate {
+    double mm_min, hz;
+  };
+  for (const auto& [relative, floor_N] : {std::pair{0.005, 0.002}, std::pair{0.0, 0.05}})
+    for (const Rate r : {Rate{12, 10}, Rate{30, 1}, Rate{120, 4}, Rate{480, 16}, Rate{600, 50}})
+      for (unsigned long long seed : {1ULL, 2ULL}) {
+        const KnownNoiseRecord k = known_noise_record(r.mm_min, r.hz, relative, floor_N, seed);
+        cc::Campaign c;
+        c.quasi_static.push_back(k.test);
+        const cc::TestNoise n = cc::estimate_noise(c).front();
+        const cc::Segments s = cc::detect_segments(k.test.record);
+        SCOPED_TRACE(k.test.name + " relative " + std::to_string(relative) + " seed " + std::to_string(seed));
+        ASSERT_TRUE(n.known);
+        const double truth = rms_over(k.true_sigma, s.load_begin, s.unload_end);
+        const double estimate = rms_over(n.stress_local, s.load_begin, s.unload_end);
+        EXPECT_NEAR(estimate / truth, 1.0, 0.15) << estimate * 1e3 << " vs " << truth * 1e3 << " kPa";
+        if (relative > 0.0)  // a floor alone of 3e-4 of the peak force: the curve's own 5th differences near the
+                             // peak (1-4 Hz sampling) still raise the hold's estimate by up to 1.7x; the RMS holds
+          EXPECT_NEAR(rms_over(n.stress_local, s.load_end, s.unload_begin) / rms_over(k.true_sigma, s.load_end, s.unload_begin),
+                      1.0, 0.15);
+        std::cout << k.test.name << " (" << relative * 100 << " % + " << floor_N << " N, seed " << seed << "): noise "
+                  << estimate * 1e3 << " kPa estimated, " << truth * 1e3 << " kPa true\n";
+      }
 }

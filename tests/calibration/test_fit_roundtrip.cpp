@@ -40,7 +40,7 @@ cal::Campaign lab_campaign(double noise, int rates = 3) {
     cal::QuasiStaticProtocol q;
     q.rate_mm_min = rate_mm_min[k];
     q.sample_hz = sample_hz[k];
-    q.preload_cycle = false;
+    q.prior.preflex_cycles = 0;
     cal::QuasiStaticRecord r = cal::run_quasi_static(*model, specimen, q);
     cal::add_force_noise(r, lab_noise, k);
     cal::QuasiStaticTest t;

@@ -2,6 +2,9 @@
 // only pushes (lift-off), seeded noise, and bad truth files.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -58,7 +61,7 @@ TEST(Lab, PlatenOnlyPushesAndForceIsNeverTensile) {
   const mat::Viscoelastic model(foam(), terms);
   cal::QuasiStaticProtocol p;
   p.rate_mm_min = 480.0;
-  p.preload_cycle = false;
+  p.prior.preflex_cycles = 0;
   const auto rec = cal::run_quasi_static(model, cal::LabSpecimen{}, p);
   ASSERT_GT(rec.time_s.size(), 10u);
   bool lift_off = false;
@@ -107,4 +110,108 @@ TEST(Lab, BadTruthFilesNameTheKey) {
   expect_error(R"({"material": "m.json", )" + specimen + R"(})", "no test");
   expect_error(R"({"material": "m.json", "specimen": {"length_mm": 80}})", "width_mm");
   fs::remove_all(dir);
+}
+
+namespace {
+
+/// A material file written to a temporary folder and read back.
+cushion::material::MaterialDefinition material_from(const std::string& json, const std::string& name) {
+  namespace fs = std::filesystem;
+  const fs::path f = fs::temp_directory_path() / ("cushion_test_lab_" + name + "_" + std::to_string(::getpid()) + ".json");
+  std::ofstream(f) << json;
+  auto def = cushion::material::read_material_file(f);
+  fs::remove(f);
+  return def;
+}
+
+const std::string visco_foam = R"({"name": "v", "hyperfoam": {"terms": [{"mu_kPa": 4, "alpha": 8, "nu": 0},
+  {"mu_kPa": 2, "alpha": -2, "nu": 0}]}, "viscoelastic": {"moduli": "long_term", "prony": [{"g": 0.2, "tau_s": 0.05},
+  {"g": 0.15, "tau_s": 1}, {"g": 0.1, "tau_s": 20}]}})";
+
+}  // namespace
+
+// amplitude_convention: peak_to_peak halves the acceleration, so a peak-to-peak 0.5 m/s^2 IS a peak 0.25 m/s^2.
+TEST(LabProtocol, PeakToPeakHalvesTheAmplitude) {
+  const auto m = material_from(visco_foam, "p2p");
+  cal::DynamicProtocol a;
+  a.frequencies_Hz = {1.0, 4.0, 12.0};
+  a.cycles = 4, a.fit_cycles = 2;
+  cal::DynamicProtocol b = a;
+  a.acceleration_amplitude = 0.5, a.amplitude_peak_to_peak = true;
+  b.acceleration_amplitude = 0.25, b.amplitude_peak_to_peak = false;
+  EXPECT_DOUBLE_EQ(a.displacement_amplitude_mm(2.0), b.displacement_amplitude_mm(2.0));
+  const auto ra = cal::run_dynamic(*m.model, cal::LabSpecimen{}, a, cal::LabNoise{}, 0);
+  const auto rb = cal::run_dynamic(*m.model, cal::LabSpecimen{}, b, cal::LabNoise{}, 0);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_NEAR(ra.dynamic_modulus_kPa[i], rb.dynamic_modulus_kPa[i], 1e-9 * rb.dynamic_modulus_kPa[i]);
+    EXPECT_NEAR(ra.phase_deg[i], rb.phase_deg[i], 1e-9);
+  }
+  b.amplitude_peak_to_peak = true;  // the same number read peak-to-peak: half the strain, another modulus
+  const auto rc = cal::run_dynamic(*m.model, cal::LabSpecimen{}, b, cal::LabNoise{}, 0);
+  EXPECT_GT(std::abs(rc.dynamic_modulus_kPa[0] / rb.dynamic_modulus_kPa[0] - 1.0), 1e-4);
+}
+
+// dwell_before_sweep_s: the base stress relaxes during the dwell, which moves the modulus measured at the first
+// frequencies (geometric term) and not at all once the dwell is long against every relaxation time.
+TEST(LabProtocol, DwellBeforeTheSweepRelaxesTheBase) {
+  const auto m = material_from(visco_foam, "dwell");
+  cal::DynamicProtocol p;
+  p.frequencies_Hz = {1.0, 2.0, 4.0};
+  p.cycles = 4, p.fit_cycles = 2;
+  const auto none = cal::run_dynamic(*m.model, cal::LabSpecimen{}, p, cal::LabNoise{}, 0);
+  p.dwell_s = 30.0;
+  const auto dwell = cal::run_dynamic(*m.model, cal::LabSpecimen{}, p, cal::LabNoise{}, 0);
+  p.dwell_s = 2000.0;
+  const auto long_dwell = cal::run_dynamic(*m.model, cal::LabSpecimen{}, p, cal::LabNoise{}, 0);
+  p.dwell_s = 4000.0;
+  const auto longer_dwell = cal::run_dynamic(*m.model, cal::LabSpecimen{}, p, cal::LabNoise{}, 0);
+  EXPECT_GT(std::abs(dwell.dynamic_modulus_kPa[0] / none.dynamic_modulus_kPa[0] - 1.0), 1e-3);
+  EXPECT_NEAR(long_dwell.dynamic_modulus_kPa[0], longer_dwell.dynamic_modulus_kPa[0], 1e-6 * long_dwell.dynamic_modulus_kPa[0]);
+}
+
+// preflex_cycles: a Mullins foam loaded after a preflex to the test's strain is softer on loading than the virgin
+// foam; a viscoelastic foam after a preflex and a long rest is back to its virgin record.
+TEST(LabProtocol, PreflexSoftensAMullinsFoamAndALongRestErasesViscousMemory) {
+  const auto mullins = material_from(R"({"name": "m", "hyperfoam": {"terms": [{"mu_kPa": 4, "alpha": 8, "nu": 0},
+    {"mu_kPa": 2, "alpha": -2, "nu": 0}]}, "effects": [{"kind": "mullins", "r": 1.5, "m_kPa": 0.5, "beta": 0.1}]})",
+                                     "mullins");
+  cal::QuasiStaticProtocol p;
+  p.rate_mm_min = 120.0, p.sample_hz = 4.0;
+  const auto virgin = cal::run_quasi_static(*mullins.model, cal::LabSpecimen{}, p);
+  p.prior = {2, 0.75, 60.0};
+  const auto flexed = cal::run_quasi_static(*mullins.model, cal::LabSpecimen{}, p);
+  ASSERT_EQ(virgin.force_N.size(), flexed.force_N.size());
+  const std::size_t mid = virgin.force_N.size() / 4;  // on loading, about 37 % strain
+  EXPECT_NEAR(flexed.time_s[mid], virgin.time_s[mid], 1e-9);
+  EXPECT_LT(flexed.force_N[mid], 0.99 * virgin.force_N[mid]);
+
+  const auto visco = material_from(visco_foam, "rest");
+  p.prior = {};
+  const auto fresh = cal::run_quasi_static(*visco.model, cal::LabSpecimen{}, p);
+  p.prior = {1, 0.75, 1e5};
+  const auto rested = cal::run_quasi_static(*visco.model, cal::LabSpecimen{}, p);
+  p.prior = {1, 0.75, 5.0};
+  const auto short_rest = cal::run_quasi_static(*visco.model, cal::LabSpecimen{}, p);
+  double worst_rested = 0.0, worst_short = 0.0, peak = 0.0;
+  for (std::size_t k = 0; k < fresh.force_N.size(); ++k) {
+    worst_rested = std::max(worst_rested, std::abs(rested.force_N[k] - fresh.force_N[k]));
+    worst_short = std::max(worst_short, std::abs(short_rest.force_N[k] - fresh.force_N[k]));
+    peak = std::max(peak, fresh.force_N[k]);
+  }
+  EXPECT_LT(worst_rested, 1e-6 * peak);
+  EXPECT_GT(worst_short, 1e-3 * peak);
+}
+
+// lift_off false: bonded platens pull the lagging foam on a fast unload (tensile force); true: clipped at zero.
+TEST(LabProtocol, LiftOffFalseBondsThePlatens) {
+  const auto terms = mat::prony_from_absolute(3.05, {23.9, 19.7, 8.99, 12.4, 8.14}, {0.01, 0.1, 1, 10, 100});
+  const mat::Viscoelastic model(foam(), terms);
+  cal::QuasiStaticProtocol p;
+  p.rate_mm_min = 480.0;
+  p.lift_off = false;
+  const auto bonded = cal::run_quasi_static(model, cal::LabSpecimen{}, p);
+  EXPECT_LT(*std::min_element(bonded.force_N.begin(), bonded.force_N.end()), 0.0);
+  p.lift_off = true;
+  const auto platen = cal::run_quasi_static(model, cal::LabSpecimen{}, p);
+  EXPECT_GE(*std::min_element(platen.force_N.begin(), platen.force_N.end()), 0.0);
 }

@@ -40,7 +40,7 @@ double quasi_static_difference(double nu, mat::LoadMode lateral, std::size_t* in
   const auto model = cal::build_model(m);
   cal::QuasiStaticProtocol q;
   q.sample_hz = 5.0;
-  q.preload_cycle = false;
+  q.prior.preflex_cycles = 0;
   q.lateral = lateral;
   const cal::LabSpecimen specimen;
   const cal::QuasiStaticRecord rec = cal::run_quasi_static(*model, specimen, q);

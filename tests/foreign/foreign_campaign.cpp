@@ -217,7 +217,8 @@ void write_campaign(const CampaignTruth& truth, const TestPlan& plan, const fs::
     write_csv(dir / file, {"SYNTHETIC quasi-static record from foreign_campaigns: " + p.name, "compression positive"},
               {"time_s", "displacement_mm", "force_N"}, {&rec.time_s, &rec.displacement_mm, &rec.force_N});
     manifest["tests"].push_back({{"kind", "quasi_static"}, {"name", p.name}, {"file", file},
-                                 {"rate_mm_min", p.rate_mm_min}, {"lateral", "free"}, {"use", p.use}});
+                                 {"rate_mm_min", p.rate_mm_min}, {"lateral", "free"}, {"use", p.use},
+                                 {"preflex_cycles", 0}, {"lift_off", true}});
   }
   for (const auto& p : plan.dynamic) {
     Random noise(mix_seed(truth.seed, stream++));
@@ -231,8 +232,9 @@ void write_campaign(const CampaignTruth& truth, const TestPlan& plan, const fs::
     manifest["tests"].push_back({{"kind", "dynamic"}, {"name", p.name}, {"file", file},
                                  {"preload_strain", p.preload_strain},
                                  {"acceleration_amplitude_m_s2", p.acceleration_peak_to_peak_m_s2},
-                                 {"amplitude_is", "peak_to_peak"}, {"preload_rate_mm_min", p.preload_rate_mm_min},
-                                 {"use", p.use}});
+                                 {"amplitude_convention", "peak_to_peak"}, {"preload_rate_mm_min", p.preload_rate_mm_min},
+                                 {"dwell_before_sweep_s", p.dwell_s}, {"cycles", p.cycles}, {"fit_cycles", p.fit_cycles},
+                                 {"preflex_cycles", 0}, {"lift_off", false}, {"use", p.use}});
   }
   write_json(dir / "campaign.json", manifest);
 

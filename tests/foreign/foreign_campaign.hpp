@@ -7,7 +7,10 @@
 /// Test plan: quasi-static 12, 120, 600 mm/min to 75 % and back (2 s hold; 10 Hz, 50 Hz at 600 mm/min so
 /// that a sample is 0.2 mm), dynamic at 25 % and 50 % preload (30 mm/min ramp, 5 s dwell,
 /// 0.25 m/s^2 peak-to-peak, 1-20 Hz, 20 cycles, last 10 fitted, 64 steps a cycle). "calibration":
-/// qs_120 and dyn_25; the rest "validation".
+/// qs_120 and dyn_25; the rest "validation". The manifest records the protocol as simulated (campaign
+/// protocol keys): no preflex; quasi-static "lift_off": true (the record ends at lift-off); dynamic
+/// "lift_off": false (displacement-driven), dwell_before_sweep_s, cycles, fit_cycles, amplitude_convention,
+/// preload_rate_mm_min.
 #include <cstdint>
 #include <filesystem>
 #include <map>

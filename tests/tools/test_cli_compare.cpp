@@ -133,3 +133,33 @@ TEST(CliDiagnose, RawCampaignIsCalibratedFirstAndTheEffectNamed) {
   EXPECT_NE(r.output.find("Add friction"), std::string::npos) << r.output;
   EXPECT_TRUE(fs::exists(dir / "out" / "material_extended.json"));
 }
+
+// compare and diagnose run one forward-model schedule (the campaign's cycles, the same time step): the same
+// material and campaign give the same error/noise per test and region in both report.json files (to 1e-9).
+// --max-iterations and --steps-per-cycle are options of diagnose (the latter of compare too).
+TEST(CliDiagnose, BaselineFiguresEqualCompareFigures) {
+  const fs::path dir = scratch() / "same";
+  const std::string files =
+      quoted(hidden() / "base_material.json") + " " + quoted(hidden() / "campaign_friction" / "campaign.json");
+  const CommandRun c = run_cushion("compare " + files + " -o " + quoted(dir / "cmp"));
+  ASSERT_EQ(c.exit_code, 0) << c.output;
+  const CommandRun d =
+      run_cushion("diagnose " + files + " -o " + quoted(dir / "diag") + " --candidates friction --max-iterations 1");
+  ASSERT_EQ(d.exit_code, 0) << d.output;
+  std::ifstream ci(dir / "cmp" / "report.json"), di(dir / "diag" / "report.json");
+  const nlohmann::json cj = nlohmann::json::parse(ci), dj = nlohmann::json::parse(di);
+  const nlohmann::json& a = cj["tests"];
+  const nlohmann::json& b = dj["baseline"]["tests"];
+  ASSERT_EQ(a.size(), 5u);
+  ASSERT_EQ(b.size(), a.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i]["name"], b[i]["name"]);
+    EXPECT_NEAR(a[i]["error_over_noise"].get<double>(), b[i]["error_over_noise"].get<double>(), 1e-9) << a[i]["name"];
+    for (std::size_t r = 0; r < a[i]["regions"].size(); ++r)
+      EXPECT_NEAR(a[i]["regions"][r]["rms"].get<double>(), b[i]["regions"][r]["rms"].get<double>(), 1e-9);
+  }
+  const CommandRun bad = run_cushion("diagnose " + files + " -o " + quoted(dir / "bad") + " --max-iterations 0");
+  EXPECT_NE(bad.exit_code, 0) << bad.output;
+  EXPECT_NE(bad.output.find("--max-iterations"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(dir / "bad"));
+}
