@@ -628,8 +628,10 @@ double held_out_chi2(const CandidateFit& f, const CandidateJobs& c, std::size_t 
   kept.tests.erase(kept.tests.begin() + static_cast<std::ptrdiff_t>(held));
   DiagnoseOptions o = c.options;
   o.max_iterations = c.options.held_out_iterations;
-  const CandidateFit refit = fit_candidate(base_of(f), f.effects, rest.campaign, rest.noise,
-                                           normalised_residuals(kept, points).size(), 0.0, o, false, f.base_refitted);
+  const std::size_t n_rest = normalised_residuals(kept, points).size();
+  if (n_rest == 0) return std::numeric_limits<double>::quiet_NaN();
+  const CandidateFit refit = fit_candidate(base_of(f), f.effects, rest.campaign, rest.noise, n_rest, 0.0, o, false,
+                                           f.base_refitted);
   if (refit.message.rfind("failed", 0) == 0) return std::numeric_limits<double>::quiet_NaN();
   try {
     const material::MaterialDefinition def = material::build_material(refit.fitted, "held-out refit");
@@ -652,6 +654,12 @@ HeldOutCheck check_held_out(const CandidateFit& f, const CandidateJobs& c, std::
   std::vector<std::size_t> held;
   for (std::size_t i = 0; i < d.noise.size() && i < f.compare.tests.size(); ++i)
     if (d.noise[i].known) held.push_back(i);
+  if (held.size() < 2) {  // nothing would be left to fit on
+    h.possible = false;
+    h.failure = "fewer than two tests with a noise estimate: nothing to hold out";
+    log << "diagnose: held-out check of " << h.candidate << ": not possible (" << h.failure << ")\n";
+    return h;
+  }
   std::vector<std::function<CandidateFit()>> jobs;  // results carry chi2 in CandidateFit::chi2
   for (std::size_t i : held) {
     jobs.push_back([&f, &c, i] { CandidateFit r; r.chi2 = held_out_chi2(f, c, i); return r; });
@@ -671,7 +679,6 @@ HeldOutCheck check_held_out(const CandidateFit& f, const CandidateJobs& c, std::
     if (!std::isfinite(cand) || !std::isfinite(ref))
       h.failure = "the refit without " + h.tests.back() + " or its prediction failed";
   }
-  if (held.size() < 2) h.failure = "fewer than two tests with a noise estimate: nothing to hold out";
   h.confirmed = h.failure.empty() && h.total_candidate < h.total_reference - c.options.held_out_margin;
   h.seconds = seconds_since(t0);
   log << "diagnose: held-out check of " << h.candidate << ": chi2 of the left-out tests " << fmt(h.total_candidate, 4)
@@ -687,6 +694,7 @@ void confirm_out_of_sample(const CandidateJobs& c, Diagnosis& d, std::ostream& l
   if (!c.options.held_out) return;
   for (std::size_t i = 0; i < d.candidates.size() && i < 3 && d.candidates[i].supported; ++i) {
     d.held_out.push_back(check_held_out(d.candidates[i], c, log));
+    if (!d.held_out.back().possible) return;  // a campaign too small to hold a test out: in-sample evidence only
     if (d.held_out.back().confirmed) {
       std::rotate(d.candidates.begin(), d.candidates.begin() + static_cast<std::ptrdiff_t>(i),
                   d.candidates.begin() + static_cast<std::ptrdiff_t>(i) + 1);

@@ -76,7 +76,8 @@ struct HeldOutCheck {
   std::vector<double> chi2_candidate, chi2_reference;     ///< held-out chi2 of each test [-]
   double total_candidate = 0.0, total_reference = 0.0;    ///< sums over the held-out tests [-]
   bool confirmed = false;
-  std::string failure;                                    ///< a refit or prediction failed (then not confirmed)
+  bool possible = true;   ///< false: fewer than two tests with a noise estimate (the in-sample verdict stands)
+  std::string failure;    ///< why the check was not possible, or a refit or prediction failed (then not confirmed)
   double seconds = 0.0;
 };
 

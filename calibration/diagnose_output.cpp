@@ -77,7 +77,7 @@ nlohmann::json diagnosis_json(const Diagnosis& d) {
   j["held_out"] = nlohmann::json::array();
   for (const auto& h : d.held_out)
     j["held_out"].push_back({{"candidate", h.candidate}, {"tests", h.tests}, {"chi2_candidate", finite_or_null(h.chi2_candidate)},
-                             {"chi2_reference", finite_or_null(h.chi2_reference)}, {"confirmed", h.confirmed},
+                             {"chi2_reference", finite_or_null(h.chi2_reference)}, {"confirmed", h.confirmed}, {"possible", h.possible},
                              {"failure", h.failure}, {"seconds", h.seconds}});
   j["candidates"] = nlohmann::json::array();
   for (std::size_t i = 0; i < d.candidates.size(); ++i) {

@@ -149,6 +149,25 @@ io::OutputFolder fit_output_folder(const fs::path& dir, bool overwrite, const fs
   return f;
 }
 
+std::vector<PlotFiles> finish_staged_fit_output(const std::vector<Plot>& plots, const fs::path& staging, const fs::path& dir,
+                                                const std::string& gnuplot, std::ostream& log, const nlohmann::json& report,
+                                                const std::function<std::string(const std::vector<PlotFiles>&)>& markdown) {
+  std::vector<PlotFiles> files;
+  for (const Plot& p : plots) files.push_back(write_plot(p, staging));
+  draw_plots(files, staging, gnuplot);
+  for (const auto& f : files)
+    if (!f.drawn) log << "fit: note: " << f.message << "\n";
+  io::write_file_atomically(staging / "report.json", report.dump(1) + "\n");
+  io::write_file_atomically(staging / "report.md", markdown(files));
+  io::replace_folder(staging, dir);
+  for (auto& f : files) {
+    f.csv = dir / f.csv.filename();
+    f.script = dir / f.script.filename();
+    f.png = dir / f.png.filename();
+  }
+  return files;
+}
+
 std::vector<PlotFiles> write_fit_outputs(const FitResult& R, const Campaign& campaign, const fs::path& dir,
                                          const std::string& gnuplot, std::ostream& log) {
   io::check_output_folder(fit_output_folder(dir, true, campaign.manifest));
@@ -186,20 +205,8 @@ std::vector<PlotFiles> write_fit_outputs(const FitResult& R, const Campaign& cam
     io::write_file_atomically(tmp / "abaqus_paper.inp", abaqus_cards(R.paper_material, "FOAM_PAPER", density, provenance + ", paper's method"));
     io::write_file_atomically(tmp / "abaqus_refit.inp", abaqus_cards(refit_material, "FOAM_REFIT", density, provenance + ", refit"));
 
-    std::vector<PlotFiles> files;
-    for (const Plot& p : fit_plots(R, campaign)) files.push_back(write_plot(p, tmp));
-    draw_plots(files, tmp, gnuplot);
-    for (const auto& f : files)
-      if (!f.drawn) log << "fit: note: " << f.message << "\n";
-    io::write_file_atomically(tmp / "report.json", report_json(R, campaign).dump(1) + "\n");
-    io::write_file_atomically(tmp / "report.md", report_markdown(R, campaign, files));
-    io::replace_folder(tmp, dir);
-    for (auto& f : files) {
-      f.csv = dir / f.csv.filename();
-      f.script = dir / f.script.filename();
-      f.png = dir / f.png.filename();
-    }
-    return files;
+    return finish_staged_fit_output(fit_plots(R, campaign), tmp, dir, gnuplot, log, report_json(R, campaign),
+                                    [&](const std::vector<PlotFiles>& files) { return report_markdown(R, campaign, files); });
   } catch (...) {
     fs::remove_all(tmp);
     throw;

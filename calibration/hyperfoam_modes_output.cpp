@@ -178,20 +178,8 @@ std::vector<PlotFiles> write_hyperfoam_outputs(const HyperfoamModesFit& fit, con
     material::write_material_file(to_spec({fit.terms, {}}, "foam", source, c.density), tmp / "material.json");
     io::write_file_atomically(tmp / "abaqus_hyperfoam.inp", abaqus_cards({fit.terms, {}}, "FOAM", c.density, source));
     for (std::size_t i = 0; i < c.tests.size(); ++i) write_points(c.tests[i], fit.tests[i], tmp / ("fit_" + c.tests[i].name + ".csv"));
-    std::vector<PlotFiles> files;
-    for (const Plot& p : hyperfoam_plots(fit, c)) files.push_back(write_plot(p, tmp));
-    draw_plots(files, tmp, gnuplot);
-    for (const auto& f : files)
-      if (!f.drawn) log << "fit: note: " << f.message << "\n";
-    io::write_file_atomically(tmp / "report.json", report_json(fit, c).dump(1) + "\n");
-    io::write_file_atomically(tmp / "report.md", report_markdown(fit, c, files));
-    io::replace_folder(tmp, dir);
-    for (auto& f : files) {
-      f.csv = dir / f.csv.filename();
-      f.script = dir / f.script.filename();
-      f.png = dir / f.png.filename();
-    }
-    return files;
+    return finish_staged_fit_output(hyperfoam_plots(fit, c), tmp, dir, gnuplot, log, report_json(fit, c),
+                                    [&](const std::vector<PlotFiles>& files) { return report_markdown(fit, c, files); });
   } catch (...) {
     fs::remove_all(tmp);
     throw;

@@ -140,9 +140,9 @@ TEST(CliCarelessInput, GarbageBytesAsJsonInpAndStl) {
 TEST(CliCarelessInput, InpWithUnknownElementOrMissingNode) {
   const fs::path dir = scratch();
   const std::string nodes = "*NODE\n1, 0, 0, 0\n2, 10, 0, 0\n3, 0, 10, 0\n";
-  write(dir / "unknown.inp", nodes + "4, 0, 0, 10\n*ELEMENT, TYPE=C3D20\n1, 1, 2, 3, 4\n");
+  write(dir / "unknown.inp", nodes + "4, 0, 0, 10\n*ELEMENT, TYPE=C3D27\n1, 1, 2, 3, 4\n");
   expect_run_rejected(dir, edited_case(dir, [](json& c) { c["mesh"] = {{"inp", "unknown.inp"}}; }),
-                      {"unknown.inp:6: *ELEMENT", "C3D20"});
+                      {"unknown.inp:6: *ELEMENT", "C3D27"});
   write(dir / "missing.inp", nodes + "*ELEMENT, TYPE=C3D4\n1, 1, 2, 3, 4\n");  // node 4 never defined
   expect_run_rejected(dir, edited_case(dir, [](json& c) { c["mesh"] = {{"inp", "missing.inp"}}; }),
                       {"missing.inp:6: *ELEMENT", "node label 4"});
