@@ -125,7 +125,7 @@ with open(os.path.join(out, "campaigns.csv"), "w", newline="") as f:
 fmt = lambda x: "-" if x is None else f"{x:.3g}"
 lines = []
 p = lines.append
-p(f"cushion diagnose benchmark on foreign campaigns: N = {len(rows)} (seed {seed}; fit + diagnose --joint-base, "
+p(f"cushion diagnose benchmark on foreign campaigns: N = {len(rows)} (seed {seed}; diagnose from raw data: fit + joint candidates, "
   f"{jobs} campaigns at a time, --threads {threads})")
 p("")
 p("Confusion matrix (rows: truth; columns: verdict; a pair verdict counts in both of its families' columns):")

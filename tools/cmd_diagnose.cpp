@@ -43,6 +43,7 @@ struct DiagnoseCli {
   cushion::io::OutputFolder out;
   std::vector<std::string> candidates;
   bool no_held_out = false;
+  bool fixed_base = false;
   cushion::calibration::DiagnoseOptions options;
 };
 
@@ -59,7 +60,11 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
   opt->out.markers = {"diagnosis.md"};
   sub->add_option("--candidates", opt->candidates, "only these effect kinds (default: the whole catalogue)")->delimiter(',');
   sub->add_flag("--joint-base", opt->options.joint_base,
-                "fit each effect together with the base moduli (for a baseline calibrated on data that contain it)");
+                "fit each effect together with the base moduli, started from the base refit (the default)");
+  sub->add_flag("--fixed-base", opt->fixed_base,
+                "fit only each effect's parameters on the given base (faster; an effect must then beat a refitted base "
+                "on its own)")
+      ->excludes("--joint-base");
   sub->add_flag("--no-held-out", opt->no_held_out,
                 "name the best-supported effect without the leave-one-test-out check (faster; in-sample evidence only)");
   sub->add_option("--threads", opt->options.threads, "candidates fitted in parallel (default 2)")->check(CLI::Range(1, 2));
@@ -76,7 +81,9 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
     cushion::io::check_output_folder(opt->out);
     DiagnoseOptions o = opt->options;
     o.candidates = opt->candidates;
-    o.joint_base = o.joint_base || raw;
+    if (opt->fixed_base && raw)
+      throw cushion::InputError("--fixed-base: needs a material (a base fitted here is fitted jointly with each effect)");
+    o.joint_base = !opt->fixed_base;
     o.held_out = !opt->no_held_out;
     for (const auto& k : o.candidates)
       if (!cushion::material::find_effect(k)) throw cushion::InputError("--candidates: unknown effect kind '" + k + "'");
