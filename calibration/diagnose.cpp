@@ -267,8 +267,9 @@ CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector
 }
 
 /// Runs jobs on `threads` threads; results in job order.
-std::vector<CandidateFit> run_all(const std::vector<std::function<CandidateFit()>>& jobs, int threads) {
-  std::vector<CandidateFit> out(jobs.size());
+template <class Result>
+std::vector<Result> run_all(const std::vector<std::function<Result()>>& jobs, int threads) {
+  std::vector<Result> out(jobs.size());
   std::atomic<std::size_t> next{0};
   auto worker = [&] {
     for (std::size_t i; (i = next++) < jobs.size();) out[i] = jobs[i]();
@@ -660,17 +661,16 @@ HeldOutCheck check_held_out(const CandidateFit& f, const CandidateJobs& c, std::
     log << "diagnose: held-out check of " << h.candidate << ": not possible (" << h.failure << ")\n";
     return h;
   }
-  std::vector<std::function<CandidateFit()>> jobs;  // results carry chi2 in CandidateFit::chi2
+  std::vector<std::function<double()>> jobs;  // held-out chi2 of the candidate (and the reference) per test
   for (std::size_t i : held) {
-    jobs.push_back([&f, &c, i] { CandidateFit r; r.chi2 = held_out_chi2(f, c, i); return r; });
-    if (reference_refit)
-      jobs.push_back([&d, &c, i] { CandidateFit r; r.chi2 = held_out_chi2(*d.base_refit, c, i); return r; });
+    jobs.push_back([&f, &c, i] { return held_out_chi2(f, c, i); });
+    if (reference_refit) jobs.push_back([&d, &c, i] { return held_out_chi2(*d.base_refit, c, i); });
   }
-  const std::vector<CandidateFit> out = run_all(jobs, c.options.threads);
+  const std::vector<double> out = run_all(jobs, c.options.threads);
   const std::size_t per = reference_refit ? 2 : 1;
   for (std::size_t j = 0; j < held.size(); ++j) {
-    const double cand = out[per * j].chi2;
-    const double ref = reference_refit ? out[per * j + 1].chi2 : test_chi2(d.baseline.tests[held[j]], c.options.quasi_static_points);
+    const double cand = out[per * j];
+    const double ref = reference_refit ? out[per * j + 1] : test_chi2(d.baseline.tests[held[j]], c.options.quasi_static_points);
     h.tests.push_back(d.baseline.tests[held[j]].name);
     h.chi2_candidate.push_back(cand);
     h.chi2_reference.push_back(ref);

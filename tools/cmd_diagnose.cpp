@@ -25,14 +25,14 @@ namespace {
 /// The base for a campaign given without a material: the `cushion fit` job with its defaults into OUT/fit
 /// (OUT prepared already). Returns the path of the material it wrote; throws std::runtime_error (exit 1) when
 /// the fit wrote none.
-std::string fit_base(const std::string& campaign_path, const std::filesystem::path& out) {
+std::string fit_base(const cushion::calibration::Campaign& campaign, const std::filesystem::path& out) {
   const std::filesystem::path fit_out = out / "fit";
   std::cout << "diagnose: no material given: calibrating the base from the campaign (cushion fit -> " << fit_out.string()
             << ")\n";
-  const auto result = cushion::tools::run_fit_job(campaign_path, cushion::calibration::FitOptions{}, fit_out, true);
+  const auto result = cushion::tools::run_fit_job(campaign, cushion::calibration::FitOptions{}, fit_out);
   const auto material = fit_out / "material.json";
   if (!std::filesystem::exists(material))
-    throw std::runtime_error("diagnose: the fit of " + campaign_path + " gave no usable material (paper: " +
+    throw std::runtime_error("diagnose: the fit of " + campaign.manifest.string() + " gave no usable material (paper: " +
                              result.paper_problem + "; refit: " + result.refit_problem + "); see " +
                              (fit_out / "report.md").string());
   return material.string();
@@ -92,7 +92,7 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
     if (!raw) given = cushion::material::read_material_file(opt->files.front());
     const Campaign campaign = read_campaign(campaign_path);
     if (raw) cushion::io::prepare_output_folder(opt->out);  // the fit writes into OUT/fit
-    const std::string material_path = raw ? fit_base(campaign_path, opt->out.dir) : opt->files.front();
+    const std::string material_path = raw ? fit_base(campaign, opt->out.dir) : opt->files.front();
     const auto def = raw ? cushion::material::read_material_file(material_path) : *given;
     Diagnosis d = diagnose(def.spec, campaign, o, std::cout);
     if (raw)

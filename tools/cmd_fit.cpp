@@ -32,7 +32,7 @@ struct FitCliOptions {
 /// options of the Prony path do not.
 void fit_hyperfoam_campaign(const FitCliOptions& opt, const CLI::App& sub) {
   using namespace cushion::calibration;
-  cushion::io::check_output_folder(fit_output_folder(opt.out.dir, opt.out.overwrite, opt.campaign));
+  cushion::tools::check_fit_output_folder(opt.out.dir, opt.out.overwrite, opt.campaign);
   std::cout << "fit: reading " << opt.campaign << " (hyperfoam-only campaign)\n";
   HyperfoamCampaign campaign = read_hyperfoam_campaign(opt.campaign);
   if (sub.count("--terms") > 0) campaign.settings.terms = opt.terms;
@@ -104,7 +104,8 @@ const cushion::tools::Registrar reg{"fit", [](CLI::App& app) {
     o.default_material = opt->default_material == "paper" ? DefaultMaterial::paper : DefaultMaterial::refit;
     o.normalisation = opt->normalisation == "paper" ? PronyNormalisation::paper : PronyNormalisation::tangent;
 
-    cushion::tools::run_fit_job(opt->campaign, o, opt->out.dir, opt->out.overwrite);
+    cushion::tools::check_fit_output_folder(opt->out.dir, opt->out.overwrite, opt->campaign);
+    cushion::tools::run_fit_job(read_campaign(opt->campaign), o, opt->out.dir);
   });
 }};
 

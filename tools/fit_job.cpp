@@ -10,12 +10,14 @@
 
 namespace cushion::tools {
 
-calibration::FitResult run_fit_job(const std::string& campaign_path, const calibration::FitOptions& options,
-                                   const std::filesystem::path& out, bool overwrite) {
+void check_fit_output_folder(const std::filesystem::path& out, bool overwrite, const std::filesystem::path& manifest) {
+  io::check_output_folder(calibration::fit_output_folder(out, overwrite, manifest));
+}
+
+calibration::FitResult run_fit_job(const calibration::Campaign& campaign, const calibration::FitOptions& options,
+                                   const std::filesystem::path& out) {
   using namespace calibration;
-  io::check_output_folder(fit_output_folder(out, overwrite, campaign_path));
-  const Campaign campaign = read_campaign(campaign_path);
-  std::cout << "fit: " << campaign_path << ": " << campaign.quasi_static.size() << " quasi-static and "
+  std::cout << "fit: " << campaign.manifest.string() << ": " << campaign.quasi_static.size() << " quasi-static and "
             << campaign.dynamic.size() << " dynamic test(s)\n";
   FitResult result = fit_pipeline(campaign, options, std::cout);
   const auto plots = write_fit_outputs(result, campaign, out, gnuplot_path(), std::cout);

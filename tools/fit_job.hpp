@@ -5,14 +5,18 @@
 #include <filesystem>
 #include <string>
 
+#include "calibration/campaign.hpp"
 #include "calibration/fit_pipeline.hpp"
 
 namespace cushion::tools {
 
-/// Checks the output folder `out` (calibration::fit_output_folder: an earlier fit output is replaced only with
-/// `overwrite`), reads the campaign, runs calibration::fit_pipeline with `options` and writes the outputs to
-/// `out`. Returns the pipeline's result (its default_material is what `out`/material.json holds, when written).
-calibration::FitResult run_fit_job(const std::string& campaign_path, const calibration::FitOptions& options,
-                                   const std::filesystem::path& out, bool overwrite);
+/// The output folder check of the fit job (calibration::fit_output_folder: an earlier fit output is replaced only
+/// with `overwrite`); call it before reading the campaign, so that a refused folder costs nothing.
+void check_fit_output_folder(const std::filesystem::path& out, bool overwrite, const std::filesystem::path& manifest);
+
+/// Runs calibration::fit_pipeline on the campaign (read already) with `options` and writes the outputs to `out`.
+/// Returns the pipeline's result (its default_material is what `out`/material.json holds, when written).
+calibration::FitResult run_fit_job(const calibration::Campaign& campaign, const calibration::FitOptions& options,
+                                   const std::filesystem::path& out);
 
 }  // namespace cushion::tools
