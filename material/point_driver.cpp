@@ -46,15 +46,18 @@ PointResponse integrate(const Material& material, const Committed& committed, co
 PointResponse solve_free_axes(const Material& material, const Committed& committed, Mat3& F,
                               const std::array<bool, 3>& free, double dt, double time,
                               std::vector<double>& state_new) {
-  std::vector<int> axes;
+  // At most 3 unknowns: fixed-capacity Eigen types, so the per-step solve allocates nothing.
+  using Vec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3, 1>;
+  using Mat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 3>;
+  std::array<int, 3> axes{};
+  int n = 0;
   for (int a = 0; a < 3; ++a)
-    if (free[a]) axes.push_back(a);
-  const int n = static_cast<int>(axes.size());
+    if (free[a]) axes[n++] = a;
 
-  Eigen::VectorXd E(n), E_previous(n), step = Eigen::VectorXd::Zero(n);
+  Vec E(n), E_previous(n), step = Vec::Zero(n);
   for (int k = 0; k < n; ++k) E(k) = 0.5 * (F(axes[k], axes[k]) * F(axes[k], axes[k]) - 1.0);
   E_previous = E;
-  auto set_stretches = [&](const Eigen::VectorXd& strain) {
+  auto set_stretches = [&](const Vec& strain) {
     for (int k = 0; k < n; ++k) {
       if (!(1.0 + 2.0 * strain(k) > 0.0)) return false;
       F(axes[k], axes[k]) = std::sqrt(1.0 + 2.0 * strain(k));
@@ -78,14 +81,16 @@ PointResponse solve_free_axes(const Material& material, const Committed& committ
       continue;
     }
     if (n == 0) return r;
-    Eigen::VectorXd residual(n);
-    Eigen::MatrixXd jacobian(n, n);
+    Vec residual(n);
+    Mat jacobian(n, n);
+    double worst_residual = 0.0;  // a loop, not cwiseAbs().maxCoeff(): gcc 12 warns (falsely) on the packet read
     for (int k = 0; k < n; ++k) {
       residual(k) = r.S(axes[k]);
+      worst_residual = std::max(worst_residual, std::abs(residual(k)));
       for (int m = 0; m < n; ++m) jacobian(k, m) = r.dS_dE(axes[k], axes[m]);
     }
     const double modulus_scale = r.dS_dE.topLeftCorner<3, 3>().cwiseAbs().maxCoeff();
-    if (residual.cwiseAbs().maxCoeff() <= 1e-15 * modulus_scale || last_stretch_step <= stretch_tolerance) return r;
+    if (worst_residual <= 1e-15 * modulus_scale || last_stretch_step <= stretch_tolerance) return r;
 
     E_previous = E;
     step = jacobian.fullPivLu().solve(-residual);
@@ -204,6 +209,13 @@ PointResult run_point(const Material& material, LoadMode mode, const History& hi
     throw InputError("platen control needs mode uniaxial_free or uniaxial_constrained, not " + to_string(mode));
 
   PointResult result;
+  const std::size_t steps = history.time.size();
+  result.time.reserve(steps);
+  result.control.reserve(steps);
+  result.F.reserve(steps);
+  result.P.reserve(steps);
+  result.sigma.reserve(steps);
+  result.in_contact.reserve(steps);
   Committed committed;
   committed.state.assign(material.state_size(), 0.0);
   material.initial_state(committed.state);

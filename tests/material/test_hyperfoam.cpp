@@ -194,6 +194,25 @@ TEST(Hyperfoam, ObjectiveStressAndPrincipalKirchhoff) {
   EXPECT_LT(rel_diff(tau.diagonal(), model.principal_kirchhoff(l)), 1e-12);
 }
 
+TEST(Hyperfoam, AlignedFrameMatchesRotatedFrame) {
+  // A diagonal F takes the aligned path (no eigen-solve, Voigt entries set directly); F R (C = R^T C0 R) takes the
+  // general one. For distinct, two equal and three equal stretches: S(F R) = R^T S(F) R and, for a random dE,
+  // dS(F R)[R^T dE R] = R^T dS(F)[dE] R, both to 1e-11 relative.
+  const Hyperfoam model(terms_with_nu(0.2));
+  std::mt19937 rng(33);
+  for (const Vec3& l : {Vec3(0.5, 1.4, 0.9), Vec3(0.6, 1.1, 1.1), Vec3(0.8, 0.8, 0.8)}) {
+    const Mat3 F = diag(l(0), l(1), l(2));
+    const Mat3 R = test::random_rotation(rng);
+    const ElasticEval aligned = model.evaluate(F), rotated = model.evaluate(F * R);
+    EXPECT_LT(rel_diff(to_voigt_stress(R.transpose() * from_voigt_stress(aligned.S) * R), rotated.S), 1e-11);
+    const Mat3 A = test::random_F(rng);
+    const Mat3 dE = 0.5 * (A + A.transpose());
+    const Mat3 dS = from_voigt_stress(aligned.dS_dE * to_voigt_strain(dE));
+    const Mat3 dS_rotated = from_voigt_stress(rotated.dS_dE * to_voigt_strain(R.transpose() * dE * R));
+    EXPECT_LT(rel_diff(to_voigt_stress(R.transpose() * dS * R), to_voigt_stress(dS_rotated)), 1e-11) << l.transpose();
+  }
+}
+
 TEST(Hyperfoam, FailuresAndValidation) {
   const Hyperfoam model(terms_with_nu(0.2));
   const ElasticEval inverted = model.evaluate(diag(1.0, -0.5, 1.0));
