@@ -12,6 +12,7 @@ std::string to_string(NewtonOutcome outcome) {
     case NewtonOutcome::diverged: return "diverged";
     case NewtonOutcome::failed: return "failed";
     case NewtonOutcome::singular: return "singular";
+    case NewtonOutcome::linear_solve_failed: return "linear solve failed";
   }
   return "unknown";
 }
@@ -154,6 +155,8 @@ NewtonResult solve_newton(NonlinearProblem& problem, LinearSolver& linear, Eigen
         ++held.uses;
       } catch (const SingularMatrixError& e) {
         return give_up(NewtonOutcome::singular, e.what());
+      } catch (const LinearSolveError& e) {
+        return give_up(NewtonOutcome::linear_solve_failed, e.what());
       }
       ls = line_search(problem, x, c, it.residual_norm, options, !reuse, r_trial, ev);
       if (new_tangent || (ls.accepted && ls.step == 1.0)) break;

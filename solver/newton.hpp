@@ -2,8 +2,8 @@
 /// Newton-Raphson driver with backtracking line search. It sees only a NonlinearProblem: a residual
 /// r(x) [N] and its tangent dr/dx [N/mm] on the free unknowns x [mm]. It never reports convergence
 /// it has not reached: the outcome is converged, diverged, failed (material failure at every trial
-/// point) or singular (tangent not factorizable); x then holds the last iterate and the caller
-/// reverts its state.
+/// point), singular (tangent not factorizable) or linear_solve_failed (an iterative linear solver did
+/// not converge); x then holds the last iterate and the caller reverts its state.
 ///
 /// Convergence (ABAQUS-like): after at least one correction, both
 ///   max|r| <= residual_tolerance * q, q = max(reference_force, current force scale, force_floor), and
@@ -53,9 +53,10 @@ class NonlinearProblem {
   virtual const Eigen::SparseMatrix<double>& tangent() const = 0;
 };
 
-/// How a Newton solve ended (only `converged` means r(x) = 0 was reached).
-enum class NewtonOutcome { converged, diverged, failed, singular };
-/// "converged", "diverged", "failed" or "singular".
+/// How a Newton solve ended (only `converged` means r(x) = 0 was reached). linear_solve_failed: an
+/// iterative linear solver did not converge (LinearSolveError).
+enum class NewtonOutcome { converged, diverged, failed, singular, linear_solve_failed };
+/// "converged", "diverged", "failed", "singular" or "linear solve failed".
 std::string to_string(NewtonOutcome outcome);
 
 /// Modified Newton: when to keep the factorization of an earlier tangent.

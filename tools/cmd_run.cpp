@@ -2,9 +2,13 @@
 // (OUTDIR/results.pvd), the history table (OUTDIR/history.csv) and the iteration log (OUTDIR/solver.log).
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "solver/analysis/analysis.hpp"
 #include "solver/output/interrupt.hpp"
+#ifdef CUSHION_HAVE_PETSC
+#include "solver/petsc/petsc_session.hpp"
+#endif
 #include "tools/command.hpp"
 
 namespace cushion::tools {
@@ -36,6 +40,11 @@ void run_command(RunCommandOptions o) {
                 << loaded.mesh.num_elements() << " elements, " << loaded.spec.steps.size() << " steps -> "
                 << o.out.dir.string() << std::endl;
   };
+#ifdef CUSHION_HAVE_PETSC
+  // PETSc and MPI live from here to the end of the run, and only for a case that chooses them.
+  std::optional<solver::petsc::Session> petsc;
+  if (loaded.spec.solver.linear_solver == solver::SolverSpec::LinearSolver::petsc) petsc.emplace();
+#endif
   const solver::InterruptGuard guard;
   const solver::RunSummary summary = solver::run_analysis(loaded, options);
   // The summary is printed even with --quiet: it is the result of the run.

@@ -8,25 +8,44 @@
 #include "io/input_error.hpp"
 #include "solver/analysis/boundary.hpp"
 #include "solver/analysis/contact_contributor.hpp"
+#ifdef CUSHION_HAVE_PETSC
+#include "solver/petsc/petsc_solver.hpp"
+#endif
 
 namespace cushion::solver {
 
 namespace {
 
-LinearSolverKind linear_solver_kind(const CaseSpec& spec) {
+/// The PETSc solver with the case's options, checked now (before anything is written).
+LinearSolverFactory petsc_solver_factory(const CaseSpec& spec, bool symmetric) {
+#ifdef CUSHION_HAVE_PETSC
+  const std::string problem = petsc::options_problem(symmetric, spec.solver.petsc_options);
+  if (!problem.empty()) throw InputError(spec.file.string() + ": solver.petsc_options: " + problem);
+  return [symmetric, options = spec.solver.petsc_options] { return petsc::make_solver(symmetric, options); };
+#else
+  throw InputError(spec.file.string() +
+                   ": solver.linear_solver: \"petsc\" is not available: this cushion was built without PETSc "
+                   "(install libpetsc-real-dev, e.g. with tools/deps.sh, and configure again)");
+#endif
+}
+
+/// The case's linear solver, checked against its tangent (and, for PETSc, the options and the build).
+LinearSolverFactory linear_solver_factory(const CaseSpec& spec) {
   // F-bar and frictional contact tangents are unsymmetric.
   const bool fbar = spec.mesh.formulation == HexFormulation::fbar || case_has_friction(spec);
+  auto direct = [](LinearSolverKind kind) -> LinearSolverFactory { return [kind] { return make_linear_solver(kind); }; };
   switch (spec.solver.linear_solver) {
     case SolverSpec::LinearSolver::cholmod:
       if (fbar)
         throw InputError(spec.file.string() +
                          ": solver.linear_solver: \"cholmod\" needs a symmetric tangent; F-bar and frictional "
                          "contact tangents are unsymmetric (use \"auto\" or \"umfpack\")");
-      return LinearSolverKind::cholesky;
-    case SolverSpec::LinearSolver::umfpack: return LinearSolverKind::lu;
+      return direct(LinearSolverKind::cholesky);
+    case SolverSpec::LinearSolver::umfpack: return direct(LinearSolverKind::lu);
+    case SolverSpec::LinearSolver::petsc: return petsc_solver_factory(spec, !fbar);
     case SolverSpec::LinearSolver::automatic: break;
   }
-  return fbar ? LinearSolverKind::lu : LinearSolverKind::cholesky_or_lu;
+  return direct(fbar ? LinearSolverKind::lu : LinearSolverKind::cholesky_or_lu);
 }
 
 std::vector<Section> case_sections(const LoadedCase& loaded) {
@@ -62,7 +81,7 @@ double peak_memory_mb() {
 
 RunSummary run_analysis(const LoadedCase& loaded, const RunOptions& options) {
   const CaseSpec& spec = loaded.spec;
-  const LinearSolverKind kind = linear_solver_kind(spec);
+  LinearSolverFactory make_linear = linear_solver_factory(spec);
   check_contacts_before_run(loaded);
   if (options.prepare_output) options.prepare_output();
   const int threads_wanted = options.threads >= 0 ? options.threads : spec.solver.threads;
@@ -74,7 +93,8 @@ RunSummary run_analysis(const LoadedCase& loaded, const RunOptions& options) {
   std::ofstream log(log_file);
   if (!log) throw std::runtime_error("cannot write " + log_file.string());
   log << "cushion run " << spec.file.string() << "\nmaterial: " << loaded.material.model->describe() << "\n";
-  AnalysisContext ctx(loaded.mesh, spec, case_sections(loaded), kind, threads, output, log, options.progress);
+  AnalysisContext ctx(loaded.mesh, spec, case_sections(loaded), std::move(make_linear), threads, output, log,
+                      options.progress);
 
   std::vector<std::unique_ptr<Step>> steps;
   for (const StepSpec& s : spec.steps) steps.push_back(make_step(s));

@@ -10,14 +10,22 @@ void TimedLinearSolver::factorize(const Eigen::SparseMatrix<double>& A) {
 }
 
 Eigen::VectorXd TimedLinearSolver::solve(const Eigen::VectorXd& b) {
+  // The report is written even when the solve throws (a Krylov method that did not converge).
+  struct Report {
+    const LinearSolver& s;
+    std::ostream& log;
+    ~Report() {
+      if (const std::string r = s.last_solve_report(); !r.empty()) log << "      " << r << "\n";
+    }
+  } report{*inner_, log_};
   return timed(stats_.solve_time, [&] { return inner_->solve(b); });
 }
 
 AnalysisContext::AnalysisContext(const mesh::Mesh& mesh, const CaseSpec& spec, std::vector<Section> sections,
-                                 LinearSolverKind linear_kind, unsigned threads, AnalysisOutput& output,
+                                 LinearSolverFactory make_linear, unsigned threads, AnalysisOutput& output,
                                  std::ostream& log, std::ostream* progress)
     : mesh_(mesh), spec_(spec), output_(output), log_(log), progress_(progress), sections_(std::move(sections)),
-      linear_kind_(linear_kind), threads_(threads), start_(std::chrono::steady_clock::now()) {
+      make_linear_(std::move(make_linear)), threads_(threads), start_(std::chrono::steady_clock::now()) {
   model_.u = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(mesh.num_nodes()));
   model_.f_int = model_.u;
   model_.constrained.assign(model_.u.size(), false);
@@ -34,7 +42,8 @@ System& AnalysisContext::system(const std::vector<bool>& mask) {
   s->constrained = mask;
   s->assembler =
       std::make_unique<Assembler>(mesh_, sections_, DofMap(mesh_.num_nodes(), mask), AssemblyOptions{threads_});
-  s->linear = std::make_unique<TimedLinearSolver>(make_linear_solver(linear_kind_), stats_);
+  s->linear = std::make_unique<TimedLinearSolver>(make_linear_(), stats_, log_);
+  s->linear->set_geometry(s->assembler->dofs(), mesh_.nodes);
   if (systems_.empty()) model_.material = s->assembler->make_state_store();  // same layout for every system
   systems_.push_back(std::move(s));
   return *systems_.back();

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <memory>
 #include <ostream>
@@ -32,12 +33,18 @@ struct SolverStats {
   double solve_time = 0.0;       ///< [s] forward/back substitutions
 };
 
-/// A linear solver that forwards to another and adds its costs to SolverStats.
+/// A linear solver that forwards to another, adds its costs to SolverStats and writes the report of
+/// every solve that has one (iterative solvers: the iterations) to the run log.
 class TimedLinearSolver final : public LinearSolver {
  public:
-  TimedLinearSolver(std::unique_ptr<LinearSolver> inner, SolverStats& stats) : inner_(std::move(inner)), stats_(stats) {}
+  TimedLinearSolver(std::unique_ptr<LinearSolver> inner, SolverStats& stats, std::ostream& log)
+      : inner_(std::move(inner)), stats_(stats), log_(log) {}
+  void set_geometry(const DofMap& dofs, const std::vector<Eigen::Vector3d>& nodes) override {
+    inner_->set_geometry(dofs, nodes);
+  }
   void factorize(const Eigen::SparseMatrix<double>& A) override;
   Eigen::VectorXd solve(const Eigen::VectorXd& b) override;
+  std::string last_solve_report() const override { return inner_->last_solve_report(); }
   std::string method() const override { return inner_->method(); }
   int analyses() const override { return inner_->analyses(); }
   std::string analysis_report() const override { return inner_->analysis_report(); }
@@ -45,7 +52,11 @@ class TimedLinearSolver final : public LinearSolver {
  private:
   std::unique_ptr<LinearSolver> inner_;
   SolverStats& stats_;
+  std::ostream& log_;
 };
+
+/// Makes the linear solver of a new System (no analysis done yet).
+using LinearSolverFactory = std::function<std::unique_ptr<LinearSolver>()>;
 
 /// Assembler and linear solver for one set of constrained DOFs (the sparsity pattern and the
 /// symbolic factorization depend on it). Steps with the same constraints share one System, so
@@ -53,7 +64,7 @@ class TimedLinearSolver final : public LinearSolver {
 struct System {
   std::vector<bool> constrained;  ///< 3 per node
   std::unique_ptr<Assembler> assembler;
-  std::unique_ptr<LinearSolver> linear;  ///< a TimedLinearSolver
+  std::unique_ptr<LinearSolver> linear;  ///< a TimedLinearSolver, its geometry set
 };
 
 /// The model state carried from step to step: the end of the last converged increment. Steps read
@@ -79,7 +90,7 @@ class AnalysisContext {
   /// `mesh`, `spec`, `output`, `log` and `*progress` must outlive the context. Sections: one per
   /// material (here: the case's).
   AnalysisContext(const mesh::Mesh& mesh, const CaseSpec& spec, std::vector<Section> sections,
-                  LinearSolverKind linear_kind, unsigned threads, AnalysisOutput& output, std::ostream& log,
+                  LinearSolverFactory make_linear, unsigned threads, AnalysisOutput& output, std::ostream& log,
                   std::ostream* progress);
 
   const mesh::Mesh& mesh() const { return mesh_; }  ///< the model's mesh (reference, mm)
@@ -119,7 +130,7 @@ class AnalysisContext {
   ModelState model_;
   SolverStats stats_;
   std::vector<Section> sections_;
-  LinearSolverKind linear_kind_;
+  LinearSolverFactory make_linear_;
   unsigned threads_;
   std::vector<std::unique_ptr<System>> systems_;
   std::map<std::string, std::shared_ptr<ContactContributor>> contacts_;  ///< by contact name

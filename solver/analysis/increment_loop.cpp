@@ -63,6 +63,8 @@ NewtonResult solve_attempt(IncrementAttempt& attempt, LinearSolver& linear, Newt
         return fail(NewtonOutcome::failed, "material failure in the predictor: " + ev.message);
     } catch (const SingularMatrixError& e) {
       return fail(NewtonOutcome::singular, e.what());
+    } catch (const LinearSolveError& e) {
+      return fail(NewtonOutcome::linear_solve_failed, e.what());
     }
   }
   options.prescribed_increment =

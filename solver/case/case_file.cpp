@@ -5,6 +5,8 @@
 #include "solver/case/case_file.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <sstream>
 
 #include "io/input_error.hpp"
 #include "io/json_reader.hpp"
@@ -14,13 +16,39 @@ namespace cushion::solver {
 
 namespace case_parse {
 
+namespace {
+
+/// Why `options` is not a PETSc option string ("-name [value] -name [value] ..."), or "" if it is.
+/// Option names start with '-' and a letter; each takes at most one value (a negative number is a value).
+std::string petsc_options_syntax_problem(const std::string& options) {
+  std::istringstream words(options);
+  bool after_name = false;
+  for (std::string w; words >> w;) {
+    const bool name = w.size() > 1 && w[0] == '-' && std::isalpha(static_cast<unsigned char>(w[1]));
+    if (!name && !after_name)
+      return "'" + w + "' is not an option name (PETSc options look like \"-ksp_type cg -pc_type gamg\")";
+    after_name = name;
+  }
+  return {};
+}
+
+}  // namespace
+
 SolverSpec parse_solver(const Obj& o) {
   SolverSpec s;
   if (o.has("threads")) s.threads = o.integer("threads", 0, 1024);
-  const std::string ls = o.choice_or("linear_solver", {"auto", "cholmod", "umfpack"}, "auto");
+  const std::string ls = o.choice_or("linear_solver", {"auto", "cholmod", "umfpack", "petsc"}, "auto");
   s.linear_solver = ls == "cholmod"   ? SolverSpec::LinearSolver::cholmod
                     : ls == "umfpack" ? SolverSpec::LinearSolver::umfpack
+                    : ls == "petsc"   ? SolverSpec::LinearSolver::petsc
                                       : SolverSpec::LinearSolver::automatic;
+  if (o.has("petsc_options")) {
+    if (s.linear_solver != SolverSpec::LinearSolver::petsc)
+      o.fail("petsc_options", "applies only with \"linear_solver\": \"petsc\"");
+    s.petsc_options = o.string("petsc_options");
+    const std::string problem = petsc_options_syntax_problem(s.petsc_options);
+    if (!problem.empty()) o.fail("petsc_options", problem);
+  }
   s.residual_tolerance = o.positive_or("residual_tolerance", s.residual_tolerance);
   s.correction_tolerance = o.positive_or("correction_tolerance", s.correction_tolerance);
   if (o.has("max_iterations")) s.max_iterations = o.integer("max_iterations", 1, 1000);
@@ -99,7 +127,7 @@ CaseSpec parse_case_json(const std::string& text, const std::filesystem::path& f
   parse_steps(top, spec);
   if (top.has("solver"))
     spec.solver = case_parse::parse_solver(top.child(
-        "solver", {"threads", "linear_solver", "residual_tolerance", "correction_tolerance", "max_iterations",
+        "solver", {"threads", "linear_solver", "petsc_options", "residual_tolerance", "correction_tolerance", "max_iterations",
                    "max_cutbacks", "cutback_factor", "growth_factor", "newton", "max_contraction"}));
   return spec;
 }

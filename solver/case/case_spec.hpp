@@ -64,7 +64,9 @@
 ///        [mm], RFi = sum of reaction forces over the set [N]; columns "top.U3_mm", "top.RF3_N".
 ///        The history columns of a run are the union over its steps, in order of first appearance.
 ///   } ],
-///   "solver"?: {"threads"? = 0 (0: all cores), "linear_solver"? = "auto" | "cholmod" | "umfpack",
+///   "solver"?: {"threads"? = 0 (0: all cores), "linear_solver"? = "auto" | "cholmod" | "umfpack" | "petsc",
+///               "petsc_options"? = ""   with "petsc" only: PETSc options such as "-ksp_type cg -pc_type
+///               gamg" (solver/petsc/petsc_solver.hpp; checked against PETSc before the run starts)
 ///               "residual_tolerance"? = 0.005   max residual / time-averaged force (ABAQUS R_n)
 ///               "correction_tolerance"? = 0.01  max correction / max increment of u (ABAQUS C_n)
 ///               "max_iterations"? = 16, "max_cutbacks"? = 5,
@@ -226,7 +228,8 @@ struct StepSpec {
 
 struct SolverSpec {
   int threads = 0;  ///< 0: all hardware threads
-  enum class LinearSolver { automatic, cholmod, umfpack } linear_solver = LinearSolver::automatic;
+  enum class LinearSolver { automatic, cholmod, umfpack, petsc } linear_solver = LinearSolver::automatic;
+  std::string petsc_options;           ///< "petsc" only: "-name value" pairs or flags, whitespace separated
   double residual_tolerance = 0.005;   ///< [-] largest residual / time-averaged force
   double correction_tolerance = 0.01;  ///< [-] largest correction / largest increment of u
   int max_iterations = 16;

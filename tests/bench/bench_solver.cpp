@@ -21,6 +21,7 @@
 
 #include "material/hyperfoam.hpp"
 #include "mesh/structured_hex.hpp"
+#include "quarter_cube.hpp"
 #include "solver/equilibrium.hpp"
 
 using namespace cushion;
@@ -52,47 +53,13 @@ const char* ordering_name(int o) {
   return "other";
 }
 
-/// Quarter cube with symmetry planes x = 0, y = 0, z = 0 and the top prescribed in z.
-struct CubeModel {
-  mesh::Mesh m;
-  std::vector<bool> constrained;
-  Eigen::VectorXd u_end;
-};
-
-CubeModel quarter_cube(int n, double top_mm) {
-  mesh::BlockSpec spec;
-  spec.high = Eigen::Vector3d(40, 40, 80);  // [mm]
-  spec.n = {n, n, n};
-  CubeModel c{mesh::structured_block(spec), {}, {}};
-  c.constrained.assign(3 * c.m.num_nodes(), false);
-  c.u_end = Eigen::VectorXd::Zero(3 * c.m.num_nodes());
-  for (std::size_t a = 0; a < c.m.num_nodes(); ++a) {
-    const Eigen::Vector3d& X = c.m.nodes[a];
-    for (int i = 0; i < 3; ++i)
-      if (X(i) < 1e-9) c.constrained[3 * a + i] = true;
-    if (X(2) > 80 - 1e-9) c.constrained[3 * a + 2] = true, c.u_end(3 * a + 2) = top_mm;
-  }
-  return c;
-}
-
 int bench_factor(int n, const std::string& orderings) {
-  const CubeModel c = quarter_cube(n, -16.0);
-  auto foam = std::make_shared<material::Hyperfoam>(std::vector<material::HyperfoamTerm>{{0.01, 10.0, 0.0}});
-  solver::Section section{"foam", {}, foam, solver::Formulation::full, 0.0};
-  for (std::size_t e = 0; e < c.m.num_elements(); ++e) section.elements.push_back(static_cast<int>(e));
-  const solver::Assembler assembler(c.m, {section}, solver::DofMap(c.m.num_nodes(), c.constrained),
-                                    {std::max(1u, std::thread::hardware_concurrency())});
-  solver::StateStore state = assembler.make_state_store();
-  solver::SparseMatrix K = assembler.make_matrix();
-  Eigen::VectorXd f;
-  // Homogeneous 20 % compression (nu = 0: no lateral motion): a representative SPD tangent.
-  Eigen::VectorXd u = Eigen::VectorXd::Zero(c.u_end.size());
-  for (std::size_t a = 0; a < c.m.num_nodes(); ++a) u(3 * a + 2) = -0.2 * c.m.nodes[a](2);
-  auto t0 = Clock::now();
-  assembler.assemble(u, u, 0.0, state, f, &K);
+  const bench::CubeTangent tangent = bench::compressed_cube_tangent(n);
+  const solver::SparseMatrix& K = tangent.K;
   std::printf("quarter cube %d^3 hex8: %ld free dofs, %ld nonzeros (full), assembly %.3f s; BLAS threads %d\n", n,
-              static_cast<long>(K.rows()), static_cast<long>(K.nonZeros()), seconds_since(t0), blas_threads());
+              static_cast<long>(K.rows()), static_cast<long>(K.nonZeros()), tangent.assembly_s, blas_threads());
   const Eigen::VectorXd b = Eigen::VectorXd::Ones(K.rows());
+  auto t0 = Clock::now();
 
   std::printf("%-8s %-7s %-8s %10s %10s %10s %12s %12s %10s\n", "ordering", "threads", "selected", "analyse_s",
               "factor_s", "factor_cpu", "nnz(L)", "flop", "residual");

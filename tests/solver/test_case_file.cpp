@@ -399,3 +399,21 @@ TEST(CaseFile, DynamicStepDampingAndHhtAlpha) {
   EXPECT_EQ(d.hht_alpha, -0.1);
   EXPECT_DOUBLE_EQ(d.gamma, 0.6);
 }
+
+// Issue 14: "linear_solver": "petsc" with its options string; the string's form is checked when parsed
+// (whether PETSc knows the options is checked before the run, tests/petsc).
+TEST(CaseFile, PetscOptionsAreParsedAndTheirFormChecked) {
+  auto j = valid_case();
+  j["solver"] = {{"linear_solver", "petsc"}, {"petsc_options", "-ksp_type cg -pc_type gamg -ksp_rtol 1e-10 -ksp_monitor"}};
+  const CaseSpec spec = parse_case_json(j.dump(), scratch("petsc") / "case.json");
+  EXPECT_EQ(spec.solver.linear_solver, SolverSpec::LinearSolver::petsc);
+  EXPECT_EQ(spec.solver.petsc_options, "-ksp_type cg -pc_type gamg -ksp_rtol 1e-10 -ksp_monitor");
+  j["solver"]["petsc_options"] = "-ksp_rtol -1e-3";  // a negative number is a value, not a name
+  EXPECT_EQ(error_of(j, "petsc_negative"), "");
+  j["solver"]["petsc_options"] = "ksp_type cg";
+  expect_error(error_of(j, "petsc_name"), "solver.petsc_options", "'ksp_type' is not an option name");
+  j["solver"]["petsc_options"] = "-ksp_type cg gmres";
+  expect_error(error_of(j, "petsc_two_values"), "solver.petsc_options", "'gmres' is not an option name");
+  j["solver"] = {{"linear_solver", "umfpack"}, {"petsc_options", "-ksp_type cg"}};
+  expect_error(error_of(j, "petsc_other_solver"), "solver.petsc_options", "only with \"linear_solver\": \"petsc\"");
+}

@@ -1,0 +1,353 @@
+#include "solver/petsc/petsc_solver.hpp"
+
+#include <petscksp.h>
+
+#include <cctype>
+#include <cstring>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+#include "solver/dof_map.hpp"
+#include "solver/petsc/petsc_session.hpp"
+#include "solver/petsc/petsc_support.hpp"
+
+namespace cushion::solver::petsc {
+
+namespace {
+
+/// Defaults under the caller's options: multigrid levels smoothed by symmetric SOR (Richardson). The
+/// PETSc default, Chebyshev with estimated eigenvalues, gave an indefinite preconditioner (CG stopped
+/// with DIVERGED_INDEFINITE_PC) on compressed foam tangents that CHOLMOD factorizes as SPD.
+constexpr const char* default_options = "-mg_levels_ksp_type richardson -mg_levels_pc_type sor";
+
+/// A Krylov solve that ended without converging (PETSc itself reported no error).
+class NotConverged : public LinearSolveError {
+ public:
+  using LinearSolveError::LinearSolveError;
+};
+
+/// Owner of one PETSc object, destroyed with its XxxDestroy.
+template <class T, PetscErrorCode (*Destroy)(T*)>
+class Handle {
+ public:
+  Handle() = default;
+  ~Handle() { reset(); }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  operator T() const { return p_; }
+  /// Destroys the object held, for a call that creates a new one into the returned slot.
+  T* out() {
+    reset();
+    return &p_;
+  }
+
+ private:
+  void reset() {
+    if (p_) Destroy(&p_);
+    p_ = nullptr;
+  }
+  T p_ = nullptr;
+};
+
+/// Where the rows of A go in the PETSc system (PETSc rows without one of A are constrained DOFs).
+struct Layout {
+  PetscInt size = 0;                    ///< PETSc rows
+  PetscInt block = 1;                   ///< 3 with a geometry (x, y, z of one node), else 1
+  std::vector<PetscInt> row;            ///< PETSc row of each row of A
+  std::vector<PetscInt> constrained;    ///< PETSc rows with no row of A (diagonal only)
+  std::vector<PetscScalar> coordinates; ///< x, y, z of every node [mm]; empty: no near-null space
+};
+
+class PetscSolver final : public LinearSolver {
+ public:
+  PetscSolver(bool symmetric, const std::string& options) {
+    if (!Session::active()) throw std::logic_error("a PETSc solver needs a live petsc::Session");
+    check(PetscOptionsCreate(options_.out()), "PetscOptionsCreate");
+    check(PetscOptionsInsertString(options_, default_options), "PetscOptionsInsertString");
+    check(PetscOptionsInsertString(options_, options.c_str()), "PetscOptionsInsertString");
+    std::istringstream words(options);
+    for (std::string w; words >> w;)
+      if (w.size() > 1 && w[0] == '-' && std::isalpha(static_cast<unsigned char>(w[1]))) given_.insert(w);
+    const OptionsScope scope(options_);
+    check(KSPCreate(PETSC_COMM_SELF, ksp_.out()), "KSPCreate");
+    check(KSPSetType(ksp_, symmetric ? KSPCG : KSPGMRES), "KSPSetType");
+    PC pc = nullptr;
+    check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+    check(PCSetType(pc, PCGAMG), "PCSetType");
+    check(KSPSetTolerances(ksp_, 1e-8, PETSC_DEFAULT, PETSC_DEFAULT, 1000), "KSPSetTolerances");
+    check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
+    PetscInt limit = -1;
+    PetscBool set = PETSC_FALSE;
+    check(PetscOptionsGetInt(options_, nullptr, "-cushion_pc_reuse_max_it", &limit, &set), "PetscOptionsGetInt");
+    reuse_limit_ = set ? limit : -1;
+    KSPType type = nullptr;
+    check(KSPGetType(ksp_, &type), "KSPGetType");
+    preonly_ = std::strcmp(type, KSPPREONLY) == 0;
+  }
+
+  void set_geometry(const DofMap& dofs, const std::vector<Eigen::Vector3d>& nodes) override {
+    if (dofs.num_dofs() != 3 * nodes.size()) throw std::invalid_argument("PETSc solver: DOF map and nodes differ");
+    layout_ = Layout{static_cast<PetscInt>(dofs.num_dofs()), 3, {}, {}, {}};
+    layout_.row.assign(dofs.free_dofs().begin(), dofs.free_dofs().end());
+    layout_.constrained.assign(dofs.constrained_dofs().begin(), dofs.constrained_dofs().end());
+    for (const Eigen::Vector3d& X : nodes) layout_.coordinates.insert(layout_.coordinates.end(), {X(0), X(1), X(2)});
+    pattern_ = {};  // the next factorize builds the matrix in this layout
+  }
+
+  void factorize(const Eigen::SparseMatrix<double>& A) override {
+    const OptionsScope scope(options_);
+    if (!pattern_.matches_or_store(A)) build_matrix(A);
+    set_values(A);
+    if (!pc_ready_ || !reuse_next_) setup_preconditioner();
+    else check(KSPSetReusePreconditioner(ksp_, PETSC_TRUE), "KSPSetReusePreconditioner");
+  }
+
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) override {
+    if (!pc_ready_) throw std::logic_error("PETSc solver: solve() before factorize()");
+    const OptionsScope scope(options_);
+    set_rhs(b);
+    const bool reused = !fresh_;
+    run_ksp();
+    const bool retried = reason_ < 0 && reused;
+    if (retried) {
+      setup_preconditioner();
+      run_ksp();
+    }
+    last_report_ = "ksp " + ksp_type() + ": " + std::to_string(iterations_) + " iterations (" +
+                   KSPConvergedReasons[reason_] + "), " +
+                   (retried  ? "new preconditioner (the reused one did not converge)"
+                    : reused ? "preconditioner reused"
+                             : "new preconditioner");
+    if (reason_ < 0) throw NotConverged(method() + " did not converge: " + last_report_);
+    total_iterations_ += iterations_;
+    ++solves_;
+    if (fresh_) fresh_iterations_ = iterations_;
+    fresh_ = false;
+    reuse_next_ = !preonly_ && reuse_limit_ != 0 && iterations_ <= reuse_limit();
+    return solution();
+  }
+
+  std::string method() const override {
+    PC pc = nullptr;
+    PCType type = nullptr;
+    MatSolverType package = nullptr;
+    KSPGetPC(ksp_, &pc);
+    PCGetType(pc, &type);
+    std::string name = "petsc " + ksp_type() + " + " + (type ? type : "?");
+    if (type && (!std::strcmp(type, PCLU) || !std::strcmp(type, PCCHOLESKY)) &&
+        !PCFactorGetMatSolverType(pc, &package) && package)
+      name += std::string(" (") + package + ")";
+    return name;
+  }
+  int analyses() const override { return analyses_; }
+  std::string analysis_report() const override {
+    if (!analyses_) return {};
+    char text[300];
+    std::snprintf(text, sizeof text,
+                  "%s, %d preconditioner setups, %ld iterations in %d solves (%.1f each); near-null space: %s",
+                  method().c_str(), setups_, total_iterations_, solves_,
+                  solves_ ? double(total_iterations_) / solves_ : 0.0,
+                  layout_.coordinates.empty() ? "none (no geometry)" : "6 rigid-body modes");
+    return text;
+  }
+  std::string last_solve_report() const override { return last_report_; }
+
+  /// The caller's options nothing has read so far, "-name" each, space separated (defaults not read
+  /// because the caller chose another method are not listed).
+  std::string unused_options() const {
+    PetscInt n = 0;
+    char** names = nullptr;
+    char** values = nullptr;
+    check(PetscOptionsLeftGet(options_, &n, &names, &values), "PetscOptionsLeftGet");
+    std::string list;
+    for (PetscInt i = 0; i < n; ++i)
+      if (given_.count(std::string("-") + names[i])) list += std::string(list.empty() ? "" : " ") + "-" + names[i];
+    PetscOptionsLeftRestore(options_, &n, &names, &values);
+    return list;
+  }
+
+ private:
+  std::string ksp_type() const {
+    KSPType type = nullptr;
+    KSPGetType(ksp_, &type);
+    return type ? type : "?";
+  }
+
+  /// Largest iteration count of a solve after which the preconditioner is kept.
+  long reuse_limit() const {
+    return reuse_limit_ >= 0 ? reuse_limit_ : std::max(2 * fresh_iterations_, fresh_iterations_ + 10);
+  }
+
+  /// A new matrix for A's pattern (COO in A's storage order, then the constrained diagonal).
+  void build_matrix(const Eigen::SparseMatrix<double>& A) {
+    if (layout_.size == 0 || static_cast<Eigen::Index>(layout_.row.size()) != A.rows()) {
+      if (!layout_.coordinates.empty()) throw std::invalid_argument("PETSc solver: matrix size differs from the DOF map");
+      layout_ = Layout{static_cast<PetscInt>(A.rows()), 1, {}, {}, {}};
+      for (PetscInt i = 0; i < layout_.size; ++i) layout_.row.push_back(i);
+    }
+    std::vector<PetscInt> rows, cols;
+    rows.reserve(A.nonZeros() + layout_.constrained.size());
+    cols.reserve(rows.capacity());
+    for (Eigen::Index k = 0; k < A.outerSize(); ++k)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
+        rows.push_back(layout_.row[it.row()]);
+        cols.push_back(layout_.row[it.col()]);
+      }
+    rows.insert(rows.end(), layout_.constrained.begin(), layout_.constrained.end());
+    cols.insert(cols.end(), layout_.constrained.begin(), layout_.constrained.end());
+    values_.resize(rows.size());
+    check(MatCreate(PETSC_COMM_SELF, matrix_.out()), "MatCreate");
+    check(MatSetSizes(matrix_, layout_.size, layout_.size, layout_.size, layout_.size), "MatSetSizes");
+    check(MatSetType(matrix_, MATAIJ), "MatSetType");
+    check(MatSetBlockSize(matrix_, layout_.block), "MatSetBlockSize");
+    check(MatSetPreallocationCOO(matrix_, static_cast<PetscCount>(rows.size()), rows.data(), cols.data()),
+          "MatSetPreallocationCOO");
+    if (!layout_.coordinates.empty()) set_near_null_space();
+    check(MatCreateVecs(matrix_, x_.out(), b_.out()), "MatCreateVecs");
+    check(KSPSetOperators(ksp_, matrix_, matrix_), "KSPSetOperators");
+    pc_ready_ = false;
+    ++analyses_;
+  }
+
+  /// The six rigid-body modes of the nodes as GAMG's near-null space.
+  void set_near_null_space() {
+    Handle<Vec, VecDestroy> coordinates;
+    check(VecCreateSeqWithArray(PETSC_COMM_SELF, 3, layout_.size, layout_.coordinates.data(), coordinates.out()),
+          "VecCreateSeqWithArray");
+    Handle<MatNullSpace, MatNullSpaceDestroy> modes;
+    check(MatNullSpaceCreateRigidBody(coordinates, modes.out()), "MatNullSpaceCreateRigidBody");
+    check(MatSetNearNullSpace(matrix_, modes), "MatSetNearNullSpace");
+  }
+
+  /// A's values, then the constrained diagonal: the mean |diagonal| of A (1 if that is 0).
+  void set_values(const Eigen::SparseMatrix<double>& A) {
+    const Eigen::Index nnz = A.nonZeros();
+    std::copy(A.valuePtr(), A.valuePtr() + nnz, values_.begin());
+    const double mean = A.rows() ? A.diagonal().cwiseAbs().mean() : 0.0;
+    std::fill(values_.begin() + nnz, values_.end(), mean > 0.0 ? mean : 1.0);
+    check(MatSetValuesCOO(matrix_, values_.data(), INSERT_VALUES), "MatSetValuesCOO");
+  }
+
+  void setup_preconditioner() {
+    check(KSPSetReusePreconditioner(ksp_, PETSC_FALSE), "KSPSetReusePreconditioner");
+    check(KSPSetUp(ksp_), "KSPSetUp");
+    ++setups_;
+    pc_ready_ = fresh_ = true;
+  }
+
+  void set_rhs(const Eigen::VectorXd& b) {
+    check(VecZeroEntries(b_), "VecZeroEntries");
+    PetscScalar* v = nullptr;
+    check(VecGetArray(b_, &v), "VecGetArray");
+    for (Eigen::Index i = 0; i < b.size(); ++i) v[layout_.row[i]] = b(i);
+    check(VecRestoreArray(b_, &v), "VecRestoreArray");
+  }
+
+  void run_ksp() {
+    check(KSPSolve(ksp_, b_, x_), "KSPSolve");
+    PetscInt iterations = 0;
+    check(KSPGetIterationNumber(ksp_, &iterations), "KSPGetIterationNumber");
+    check(KSPGetConvergedReason(ksp_, &reason_), "KSPGetConvergedReason");
+    iterations_ = iterations;
+  }
+
+  Eigen::VectorXd solution() const {
+    Eigen::VectorXd x(static_cast<Eigen::Index>(layout_.row.size()));
+    const PetscScalar* v = nullptr;
+    check(VecGetArrayRead(x_, &v), "VecGetArrayRead");
+    for (Eigen::Index i = 0; i < x.size(); ++i) x(i) = v[layout_.row[i]];
+    check(VecRestoreArrayRead(x_, &v), "VecRestoreArrayRead");
+    if (!x.allFinite()) throw LinearSolveError(method() + ": the solution is not finite");
+    return x;
+  }
+
+  Handle<PetscOptions, PetscOptionsDestroy> options_;
+  std::set<std::string> given_;  ///< option names in the caller's string
+  Handle<KSP, KSPDestroy> ksp_;
+  Handle<Mat, MatDestroy> matrix_;
+  Handle<Vec, VecDestroy> x_, b_;
+  Layout layout_;
+  PatternSignature<double> pattern_;
+  std::vector<PetscScalar> values_;  ///< COO values, in the order given to MatSetPreallocationCOO
+  bool preonly_ = false;             ///< -ksp_type preonly: the preconditioner is the solve (never reused)
+  long reuse_limit_ = -1;            ///< -cushion_pc_reuse_max_it, -1: automatic
+  bool pc_ready_ = false;            ///< a preconditioner was set up for the current matrix object
+  bool fresh_ = false;               ///< ... and no solve has used it yet
+  bool reuse_next_ = false;          ///< the last solve was cheap enough to keep the preconditioner
+  long fresh_iterations_ = 0;        ///< iterations of the first solve after the last setup
+  long iterations_ = 0;              ///< of the last solve
+  KSPConvergedReason reason_ = KSP_CONVERGED_ITERATING;
+  long total_iterations_ = 0;
+  int solves_ = 0, setups_ = 0, analyses_ = 0;
+  std::string last_report_;
+};
+
+/// A vector Laplacian on an 8 x 8 x 8 node grid (unit spacing), bottom layer constrained: small, SPD,
+/// with enough nodes for a multigrid hierarchy of more than one level.
+struct ProbeProblem {
+  static constexpr int m = 8;
+  std::vector<Eigen::Vector3d> nodes;
+  std::vector<bool> constrained;
+  Eigen::SparseMatrix<double> A;
+
+  ProbeProblem() {
+    for (int k = 0; k < m; ++k)
+      for (int j = 0; j < m; ++j)
+        for (int i = 0; i < m; ++i) {
+          nodes.emplace_back(i, j, k);
+          constrained.insert(constrained.end(), 3, k == 0);
+        }
+  }
+  void assemble(const DofMap& dofs) {
+    std::vector<Eigen::Triplet<double>> t;
+    auto add = [&](int a, int b, double v) {
+      for (int c = 0; c < 3; ++c) {
+        const int ra = dofs.equation(DofMap::dof(a, c)), rb = dofs.equation(DofMap::dof(b, c));
+        if (ra >= 0 && rb >= 0) t.emplace_back(ra, rb, v);
+      }
+    };
+    for (int a = 0; a < m * m * m; ++a)
+      for (int step : {1, m, m * m}) {
+        const int b = a + step;
+        if (b >= m * m * m || (step == 1 && a % m == m - 1) || (step == m && (a / m) % m == m - 1)) continue;
+        add(a, a, 1.0), add(b, b, 1.0), add(a, b, -1.0), add(b, a, -1.0);
+      }
+    A.resize(static_cast<Eigen::Index>(dofs.num_free()), static_cast<Eigen::Index>(dofs.num_free()));
+    A.setFromTriplets(t.begin(), t.end());
+    A.makeCompressed();
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<LinearSolver> make_solver(bool symmetric, const std::string& options) {
+  return std::make_unique<PetscSolver>(symmetric, options);
+}
+
+std::string options_problem(bool symmetric, const std::string& options) {
+  const SilenceScope quiet;
+  try {
+    ProbeProblem probe;
+    const DofMap dofs(probe.nodes.size(), probe.constrained);
+    probe.assemble(dofs);
+    PetscSolver solver(symmetric, options);
+    solver.set_geometry(dofs, probe.nodes);
+    solver.factorize(probe.A);
+    try {
+      solver.solve(Eigen::VectorXd::Ones(probe.A.rows()));
+    } catch (const NotConverged&) {
+      // the options may be meant for the real problem (-ksp_max_it); only errors matter here
+    }
+    const std::string unused = solver.unused_options();
+    if (!unused.empty())
+      return "unknown or unused PETSc option(s) " + unused +
+             " (misspelled, or not read by the chosen Krylov method and preconditioner)";
+  } catch (const LinearSolveError& e) {
+    return e.what();
+  }
+  return {};
+}
+
+}  // namespace cushion::solver::petsc

@@ -1,0 +1,106 @@
+// Requirement: `cushion run` with "linear_solver": "petsc" gives the force history of the CHOLMOD run
+// (|RF3 - RF3_cholmod| <= 1e-6 max |RF3_cholmod| at every increment, same times) on a short
+// cube_compression run; an unknown PETSc option is one input-error line, exit 2, nothing written; a
+// Krylov method that does not converge stops the run with exit 1 and complete frames.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cli_runner.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using cli_test::run_cushion;
+
+/// The shipped cube_compression case, load step only and shortened to 10 s (20 mm, the same rate), with
+/// the given solver settings, written to `dir`/case.json.
+fs::path short_cube_case(const fs::path& dir, const nlohmann::json& solver) {
+  const fs::path shipped = fs::path(CUSHION_SOURCE_DIR) / "cases" / "cube_compression";
+  std::ifstream in(shipped / "case.json");
+  nlohmann::json c = nlohmann::json::parse(in);
+  c["material"]["file"] = fs::weakly_canonical(shipped / c["material"]["file"].get<std::string>()).string();
+  nlohmann::json load = c["steps"][0];
+  load["time_period_s"] = 10;
+  for (auto& b : load["boundary"])
+    if (b.contains("value_mm")) b["value_mm"] = -20;
+  c["steps"] = nlohmann::json::array({load});
+  c["solver"] = solver;
+  fs::create_directories(dir);
+  const fs::path file = dir / "case.json";
+  std::ofstream(file) << c.dump(2);
+  return file;
+}
+
+/// Rows (time [s], RF3 [N]) of history.csv (columns time_s, top.U3_mm, top.RF3_N).
+std::vector<std::pair<double, double>> force_history(const fs::path& csv) {
+  std::ifstream in(csv);
+  std::vector<std::pair<double, double>> rows;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || !std::isdigit(static_cast<unsigned char>(line[0]))) continue;
+    std::stringstream s(line);
+    std::string t, u, rf;
+    std::getline(s, t, ','), std::getline(s, u, ','), std::getline(s, rf, ',');
+    rows.emplace_back(std::stod(t), std::stod(rf));
+  }
+  return rows;
+}
+
+TEST(PetscRun, ForceHistoryMatchesCholmod) {
+  const fs::path dir = cli_test::scratch_dir("cushion_petsc_");
+  const fs::path petsc = short_cube_case(dir / "p", {{"linear_solver", "petsc"}});
+  const fs::path cholmod = short_cube_case(dir / "c", {{"linear_solver", "cholmod"}});
+  const auto run_p = run_cushion("run " + cli_test::quoted(petsc) + " -o " + cli_test::quoted(dir / "out_p") + " --quiet");
+  const auto run_c = run_cushion("run " + cli_test::quoted(cholmod) + " -o " + cli_test::quoted(dir / "out_c") + " --quiet");
+  ASSERT_EQ(run_p.exit_code, 0) << run_p.output;
+  ASSERT_EQ(run_c.exit_code, 0) << run_c.output;
+  EXPECT_NE(run_p.output.find("linear solver: petsc cg + gamg"), std::string::npos) << run_p.output;
+  const auto p = force_history(dir / "out_p" / "history.csv"), c = force_history(dir / "out_c" / "history.csv");
+  ASSERT_EQ(p.size(), c.size());
+  ASSERT_GT(c.size(), 5u);
+  double scale = 0.0;
+  for (const auto& [t, rf] : c) scale = std::max(scale, std::abs(rf));
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    EXPECT_EQ(p[i].first, c[i].first) << "row " << i;
+    EXPECT_LE(std::abs(p[i].second - c[i].second), 1e-6 * scale) << "row " << i << " t = " << c[i].first;
+  }
+  // The iterations of every solve are in the log.
+  std::ifstream log(dir / "out_p" / "solver.log");
+  const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("ksp cg: "), std::string::npos);
+  EXPECT_NE(text.find("preconditioner reused"), std::string::npos);
+}
+
+TEST(PetscRun, UnknownOptionIsOneInputErrorAndWritesNothing) {
+  const fs::path dir = cli_test::scratch_dir("cushion_petsc_");
+  const fs::path file = short_cube_case(dir, {{"linear_solver", "petsc"}, {"petsc_options", "-ksp_type cg -ksp_tpye gmres"}});
+  const auto run = run_cushion("run " + cli_test::quoted(file) + " -o " + cli_test::quoted(dir / "out"));
+  cli_test::expect_input_error(run, {"case.json", "solver.petsc_options", "-ksp_tpye"});
+  EXPECT_FALSE(fs::exists(dir / "out")) << cli_test::listed(dir / "out");
+}
+
+TEST(PetscRun, OptionsWithoutPetscSolverAreAnInputError) {
+  const fs::path dir = cli_test::scratch_dir("cushion_petsc_");
+  const fs::path file = short_cube_case(dir, {{"linear_solver", "cholmod"}, {"petsc_options", "-ksp_type cg"}});
+  const auto run = run_cushion("run " + cli_test::quoted(file) + " -o " + cli_test::quoted(dir / "out"));
+  cli_test::expect_input_error(run, {"case.json", "petsc_options", "linear_solver"});
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+TEST(PetscRun, KrylovMethodThatDoesNotConvergeStopsWithCompleteFrames) {
+  const fs::path dir = cli_test::scratch_dir("cushion_petsc_");
+  const fs::path file = short_cube_case(dir, {{"linear_solver", "petsc"}, {"petsc_options", "-ksp_max_it 1"}});
+  const auto run = run_cushion("run " + cli_test::quoted(file) + " -o " + cli_test::quoted(dir / "out") + " --quiet");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_EQ(cli_test::line_count(run.output), 1u) << run.output;
+  EXPECT_NE(run.output.find("cushion: error: step 'load'"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("linear solve failed"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("DIVERGED_ITS"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("frames written so far are complete"), std::string::npos) << run.output;
+  EXPECT_TRUE(fs::exists(dir / "out" / "results.pvd"));
+  EXPECT_TRUE(fs::exists(dir / "out" / "results_0000.vtu"));  // the undeformed state at t = 0
+}
+
+}  // namespace
