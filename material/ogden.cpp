@@ -58,7 +58,7 @@ void add_volumetric(const std::vector<double>& D, const Vec3& s, principal::Resp
 
 Ogden::Ogden(std::vector<OgdenTerm> terms, std::vector<double> D) : terms_(std::move(terms)), D_(std::move(D)) {
   if (terms_.empty() || terms_.size() > 6) throw std::invalid_argument("Ogden: need 1 to 6 terms");
-  if (D_.empty() || D_.size() > 3) throw std::invalid_argument("Ogden: need 1 to 3 compressibility coefficients D");
+  if (D_.empty() || D_.size() > 6) throw std::invalid_argument("Ogden: need 1 to 6 compressibility coefficients D");
   for (const OgdenTerm& t : terms_)
     if (!std::isfinite(t.mu) || !std::isfinite(t.alpha) || t.alpha == 0.0)
       throw std::invalid_argument("Ogden: alpha must be non-zero and mu, alpha finite");

@@ -20,7 +20,7 @@ struct OgdenTerm {
 
 class Ogden final : public Hyperelastic {
  public:
-  /// 1 <= terms.size() <= 6; D: 1..3 compressibility coefficients [1/MPa], each >= 0, D[0] > 0.
+  /// 1 <= terms.size() <= 6; D: 1..6 compressibility coefficients [1/MPa], each >= 0, D[0] > 0.
   /// Throws std::invalid_argument otherwise, on alpha = 0 or on mu0 = sum mu_i <= 0.
   Ogden(std::vector<OgdenTerm> terms, std::vector<double> D);
   ElasticEval evaluate(const Mat3& F) const override;

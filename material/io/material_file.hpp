@@ -43,7 +43,7 @@ struct MaterialSpec {
   std::vector<HyperfoamTerm> hyperfoam;  ///< base == hyperfoam
   double neo_mu = 0.0, neo_lambda = 0.0; ///< base == neo_hookean [MPa]
   std::vector<OgdenTerm> ogden;          ///< base == ogden
-  std::vector<double> ogden_D;           ///< base == ogden: D_1..D_3 [1/MPa]
+  std::vector<double> ogden_D;           ///< base == ogden: D_1..D_N [1/MPa]
   std::vector<PronyTerm> prony;          ///< empty: purely elastic
   ModuliConvention moduli = ModuliConvention::long_term;
   std::vector<EffectSpec> effects;       ///< optional physical effects, file units (material/effect_catalog.hpp)
