@@ -8,14 +8,15 @@
 #include "io/input_error.hpp"
 #include "solver/analysis/boundary.hpp"
 #include "solver/analysis/contact_contributor.hpp"
+#include "solver/analysis/pressure_contributor.hpp"
 
 namespace cushion::solver {
 
 namespace {
 
 LinearSolverKind linear_solver_kind(const CaseSpec& spec) {
-  // F-bar and frictional contact tangents are unsymmetric.
-  const bool fbar = spec.mesh.formulation == HexFormulation::fbar || case_has_friction(spec);
+  // F-bar, frictional contact and follower pressure tangents are unsymmetric.
+  const bool fbar = spec.mesh.formulation == HexFormulation::fbar || case_has_friction(spec) || case_has_pressure(spec);
   switch (spec.solver.linear_solver) {
     case SolverSpec::LinearSolver::cholmod:
       if (fbar)

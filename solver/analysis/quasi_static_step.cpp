@@ -9,6 +9,7 @@
 #include "solver/analysis/steady_state_step.hpp"
 #include "solver/analysis/step.hpp"
 #include "solver/analysis/contact_contributor.hpp"
+#include "solver/analysis/pressure_contributor.hpp"
 
 namespace cushion::solver {
 
@@ -65,6 +66,7 @@ void QuasiStaticStep::run(AnalysisContext& ctx) {
   const StepBoundary boundary(ctx.mesh(), spec_, ctx.spec().amplitudes, model.time, model.u, model.f_load);
   std::vector<std::shared_ptr<ResidualContributor>> contributors = contributors_;
   for (auto& c : step_contacts(ctx, spec_, dofs)) contributors.push_back(std::move(c));
+  if (auto pressure = step_pressures(ctx, spec_, dofs)) contributors.push_back(std::move(pressure));
   const bool visco = spec_.type == StepSpec::Type::visco;
   ctx.log() << "step '" << spec_.name << "' (" << (visco ? "visco" : spec_.long_term ? "static, long term" : "static")
           << ", " << spec_.period << " s, " << dofs.num_free() << " free DOFs, "

@@ -180,6 +180,16 @@ struct LoadSpec {
   std::string key;                       ///< "FILE:LINE", for messages
 };
 
+/// Pressure on one element face (ABAQUS *DLOAD Pn; from decks, static and visco steps only): a
+/// follower load on the current (deformed) face, positive pushing into the solid.
+struct PressureSpec {
+  mesh::Face face;
+  double value = 0.0;                    ///< [MPa] at the end of the step
+  double start_value = 0.0;              ///< [MPa] at the start of the step (linear ramp; unused with an amplitude)
+  std::optional<std::string> amplitude;  ///< name in CaseSpec::amplitudes; none: linear ramp
+  std::string key;                       ///< "FILE:LINE", for messages
+};
+
 /// Value at step time `t_step` [s] of a quantity with end value `value` and optional amplitude
 /// (value * a(t)); without amplitude a linear ramp from `start_value` over `period` [s] (ABAQUS).
 double ramped_value(double value, const std::optional<std::string>& amplitude,
@@ -238,6 +248,7 @@ struct StepSpec {
   std::vector<ContactSpec> contact;  ///< rigid indenters (contact_spec.hpp)
   std::vector<LoadSpec> loads;       ///< concentrated forces, static/visco only (decks); the complete
                                      ///< list: a load of the previous step not listed ramps to 0
+  std::vector<PressureSpec> pressures;  ///< face pressures, static/visco only (decks): the complete list
   OutputSpec output;
   SteadyStateSpec steady_state;      ///< type steady_state only (steady_state_spec.hpp)
   DynamicSpec dynamic;               ///< type dynamic only

@@ -62,6 +62,7 @@ struct State {
   std::vector<Section> sections;
   std::vector<BoundarySpec> boundary;  ///< in effect (model data, then changed by each step)
   std::vector<LoadSpec> loads;         ///< in effect
+  std::vector<PressureSpec> pressures; ///< in effect (start_value: at the start of the open step)
   std::optional<std::size_t> step;     ///< index in out.spec.steps of the open *STEP
   bool procedure = false;              ///< the open step has its *STATIC / *VISCO
   std::map<int, int> node_index;       ///< node label -> index
@@ -87,6 +88,7 @@ void finish_material(State& s);
 void amplitude(State& s, const Block& b);
 void boundary(State& s, const Block& b);
 void cload(State& s, const Block& b);
+void dload(State& s, const Block& b);
 void step(State& s, const Block& b);
 void static_procedure(State& s, const Block& b);
 void visco_procedure(State& s, const Block& b);

@@ -143,6 +143,7 @@ const std::map<std::string, Handler>& handlers() {
       {"MATERIAL", deck::material},       {"HYPERFOAM", deck::hyperfoam},   {"HYPERELASTIC", deck::hyperelastic},
       {"VISCOELASTIC", deck::viscoelastic}, {"DENSITY", deck::density},   {"SOLID SECTION", deck::solid_section},
       {"AMPLITUDE", deck::amplitude},     {"BOUNDARY", deck::boundary},     {"CLOAD", deck::cload},
+      {"DLOAD", deck::dload},
       {"STEP", deck::step},               {"STATIC", deck::static_procedure}, {"VISCO", deck::visco_procedure},
       {"END STEP", deck::end_step},       {"NODE PRINT", deck::node_print}, {"EL PRINT", deck::el_print},
       {"NODE FILE", deck::result_file},   {"EL FILE", deck::result_file}};

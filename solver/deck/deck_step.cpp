@@ -4,6 +4,7 @@
 // complete list in effect at its *END STEP, as a case file's step does.
 #include <algorithm>
 #include <array>
+#include <cctype>
 
 #include "io/input_error.hpp"
 #include "solver/deck/deck_parts.hpp"
@@ -188,6 +189,41 @@ void cload(State& s, const Block& b) {
   }
 }
 
+void dload(State& s, const Block& b) {
+  check_parameters(b, {"OP", "AMPLITUDE"});
+  open_step(s, b);
+  if (op_new(s, b))
+    for (PressureSpec& p : s.pressures) p.value = 0.0, p.amplitude.reset();  // removed: ramped down to 0
+  const std::optional<std::string> amp = amplitude_parameter(s, b);
+  for (const Line& line : b.data) {
+    const std::vector<std::string> f = mesh::inp_fields(line.text);
+    if (f.size() != 3) fail(b, line, "expected 'element or element set, Pn, magnitude'");
+    const std::string type = upper(f[1]);
+    if (type.size() != 2 || type[0] != 'P' || type[1] < '1' || type[1] > '6')
+      fail(b, line, "load type " + f[1] + " is not supported by cushion run (face pressures P1..P6 only)");
+    std::vector<int> elements;
+    if (std::isdigit(static_cast<unsigned char>(f[0][0]))) {
+      const int label = integer(b, line, f[0]);
+      const auto& els = s.out.mesh.elements;
+      const auto it = std::find_if(els.begin(), els.end(), [label](const mesh::Element& e) { return e.label == label; });
+      if (it == els.end()) fail(b, line, "undefined element label " + f[0]);
+      elements.push_back(static_cast<int>(it - els.begin()));
+    } else {
+      elements = s.out.mesh.element_sets.at(element_set(s, b, line, f[0]));
+    }
+    const double value = number(b, line, f[2]) * s.units.stress();
+    for (int e : elements) {
+      const int face = type[1] - '1';
+      if (face >= mesh::faces_per_element(s.out.mesh.elements[e].type))
+        fail(b, line, "element " + std::to_string(s.out.mesh.elements[e].label) + " has no face " + f[1]);
+      auto it = std::find_if(s.pressures.begin(), s.pressures.end(),
+                             [&](const PressureSpec& p) { return p.face.element == e && p.face.face == face; });
+      if (it == s.pressures.end()) it = s.pressures.insert(s.pressures.end(), PressureSpec{{e, face}, 0.0, 0.0, {}, ""});
+      it->value = value, it->amplitude = amp, it->key = where(line);
+    }
+  }
+}
+
 void step(State& s, const Block& b) {
   check_parameters(b, {"NLGEOM", "INC", "NAME"});
   if (s.step) fail(b, b.keyword, "a *STEP inside a *STEP (missing *END STEP)");
@@ -207,6 +243,7 @@ void step(State& s, const Block& b) {
     fail(b, b.keyword, "NLGEOM must be YES or NO");
   s.out.spec.steps.push_back(step);
   s.step = s.out.spec.steps.size() - 1;
+  for (PressureSpec& p : s.pressures) p.start_value = p.amplitude ? 0.0 : p.value;  // ramps start at the last value
   s.procedure = false;
 }
 
@@ -230,6 +267,9 @@ void end_step(State& s, const Block& b) {
   if (!s.procedure) fail(b, b.keyword, "the step has no procedure (*STATIC or *VISCO)");
   step.boundary = s.boundary;
   step.loads = s.loads;
+  step.pressures = s.pressures;
+  auto removed = [](const PressureSpec& p) { return p.value == 0.0 && !p.amplitude; };
+  s.pressures.erase(std::remove_if(s.pressures.begin(), s.pressures.end(), removed), s.pressures.end());
   s.step.reset();
 }
 

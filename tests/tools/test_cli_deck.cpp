@@ -119,7 +119,7 @@ TEST(Deck, UnsupportedKeywordOrParameterIsOneLineWithFileAndLineAndNothingIsWrit
   const struct {
     std::string extra, line_start, message;
   } cases[] = {
-      {"*DLOAD\n1, P2, -1\n", "*DLOAD", "keyword *DLOAD is not supported by cushion run"},
+      {"*EQUATION\n2\n5, 3, 1.0, 6, 3, -1.0\n", "*EQUATION", "keyword *EQUATION is not supported by cushion run"},
       {"*CONTROLS, PARAMETERS=FIELD\n0.005\n", "*CONTROLS", "keyword *CONTROLS is not supported by cushion run"},
       {"*FREQUENCY\n10\n", "*FREQUENCY", "keyword *FREQUENCY is not supported by cushion run"},
   };
