@@ -152,3 +152,40 @@ TEST(Deck, UnsupportedKeywordOrParameterIsOneLineWithFileAndLineAndNothingIsWrit
     EXPECT_FALSE(fs::exists(dir / "out")) << cli_test::listed(dir / "out");
   }
 }
+
+TEST(Deck, ViscoDeckEqualsTheCaseFileOfTheSameModel) {
+  // One analysis path: a deck with *VISCOELASTIC and two *VISCO steps (pull in 1 s, hold 2 s) and the case
+  // file of the same cube, material and increments give the same top reaction at every increment (1e-9 relative).
+  const fs::path dir = cli_test::scratch_dir("cushion_test_deck_");
+  std::string deck = cube_deck(10.0, 0.01, 2.0, 2.0);
+  auto replace = [&deck](const std::string& from, const std::string& to) { deck.replace(deck.find(from), from.size(), to); };
+  replace("*SOLID SECTION", "*VISCOELASTIC, TIME=PRONY\n0.4, 0.4, 1.0\n*SOLID SECTION");
+  replace("*STATIC\n0.25, 1.0", "*VISCO\n0.1, 1.0");
+  replace("*STATIC\n0.5, 1.0", "*VISCO\n0.1, 2.0");
+  write(dir, deck);
+  std::ofstream(dir / "foam.json") << R"({"hyperfoam": {"terms": [{"mu_kPa": 10, "alpha": 10, "nu": 0}]},
+    "viscoelastic": {"moduli": "long_term", "prony": [{"g": 0.4, "tau_s": 1.0}]}})";
+  std::ofstream(dir / "case.json") << R"({"mesh": {"generate": {"type": "hex8", "box_mm": [0, 10, 0, 10, 0, 10], "elements": [1, 1, 1]}},
+    "material": {"file": "foam.json"},
+    "sets": {"bottom": "z == 0", "top": "z == 10", "x0": "x == 0", "y0": "y == 0"},
+    "steps": [{"name": "pull", "type": "visco", "time_period_s": 1, "increment": {"initial_s": 0.1, "min_s": 1e-5, "max_s": 1},
+               "boundary": [{"set": "bottom", "type": "symmetry_z"}, {"set": "x0", "type": "symmetry_x"},
+                            {"set": "y0", "type": "symmetry_y"}, {"set": "top", "dof": "z", "value_mm": 2}],
+               "output": {"history": [{"set": "top", "quantities": ["RF3"]}]}},
+              {"name": "hold", "type": "visco", "time_period_s": 2, "increment": {"initial_s": 0.1, "min_s": 2e-5, "max_s": 2},
+               "boundary": [{"set": "bottom", "type": "symmetry_z"}, {"set": "x0", "type": "symmetry_x"},
+                            {"set": "y0", "type": "symmetry_y"}, {"set": "top", "dof": "z", "value_mm": 2}]}]})";
+  const CommandRun d = run_cushion("run " + quoted(dir / "model.inp") + " -o " + quoted(dir / "deck") + " --quiet");
+  const CommandRun c = run_cushion("run " + quoted(dir / "case.json") + " -o " + quoted(dir / "case") + " --quiet");
+  ASSERT_EQ(d.exit_code, 0) << d.output;
+  ASSERT_EQ(c.exit_code, 0) << c.output;
+  const cushion::CsvTable prints = cushion::read_csv(dir / "deck" / "node_print_TOP.csv");
+  const cushion::CsvTable history = cushion::read_csv(dir / "case" / "history.csv");
+  ASSERT_GT(history.rows(), 10u);
+  for (std::size_t r = 0; r < history.rows(); ++r) {
+    const double rf = history.col("top.RF3_N")[r];
+    EXPECT_NEAR(reaction_at(prints, history.col("time_s")[r]), rf, 1e-9 * std::abs(rf) + 1e-14) << history.col("time_s")[r];
+  }
+  // The hold relaxes: the reaction at 3 s is below the one at 1 s.
+  EXPECT_LT(reaction_at(prints, 3.0), reaction_at(prints, 1.0));
+}
