@@ -64,7 +64,7 @@ void put_boundary(State& s, BoundarySpec bc, int c) {
 
 /// "initial, total, min, max" of *STATIC / *VISCO (ABAQUS defaults: total 1, initial = total,
 /// min = min(initial, 1e-5 total), max = total).
-void read_increments(State& s, const Block& b, StepSpec& step) {
+void read_increments(const Block& b, StepSpec& step) {
   if (b.data.size() > 1) fail(b, b.data[1], "expected one data line 'initial, total, min, max'");
   std::vector<std::string> f = b.data.empty() ? std::vector<std::string>{} : mesh::inp_fields(b.data.front().text);
   if (f.size() > 4) fail(b, b.data.front(), "expected 'initial, total, min, max', got " + std::to_string(f.size()) + " fields");
@@ -86,7 +86,7 @@ void procedure(State& s, const Block& b, StepSpec::Type type) {
   if (s.procedure) fail(b, b.keyword, "the step already has its procedure");
   s.procedure = true;
   step.type = type;
-  read_increments(s, b, step);
+  read_increments(b, step);
 }
 
 /// Output variables of a print request: the supported ones; the others are warned about and skipped.
