@@ -22,33 +22,25 @@ std::string upper(std::string s) {
   return s;
 }
 
-struct Line {
-  std::string file;
-  int number = 0;
-  std::string text;
-};
-
-// A keyword line with its data lines.
-struct Block {
-  Line keyword;
-  std::string name;                            ///< upper case, e.g. "ELEMENT"
-  std::map<std::string, std::string> options;  ///< upper-case keys, values as written
-  std::vector<Line> data;
-};
+using Line = InpLine;
+using Block = InpBlock;
 
 [[noreturn]] void fail(const Line& line, const std::string& keyword, const std::string& what) {
   throw InputError(line.file + ":" + std::to_string(line.number) + ": " +
                    (keyword.empty() ? "" : "*" + keyword + ": ") + what);
 }
 
-// Comma-separated fields, trimmed; one trailing empty field (line ending in ',') is dropped.
-std::vector<std::string> fields(const std::string& text) {
+}  // namespace
+
+std::vector<std::string> inp_fields(const std::string& text) {
   std::vector<std::string> out;
   std::stringstream stream(text);
   for (std::string item; std::getline(stream, item, ',');) out.push_back(trim(item));
   if (!out.empty() && out.back().empty()) out.pop_back();
   return out;
 }
+
+namespace {
 
 bool ends_with_comma(const std::string& text) {
   const std::string t = trim(text);
@@ -64,7 +56,7 @@ void load(const std::string& text, const std::string& name, std::vector<Line>& l
     const std::string t = trim(raw);
     if (t.empty() || t.rfind("**", 0) == 0) continue;
     const Line line{name, number, t};
-    const std::vector<std::string> keyword_fields = t[0] == '*' ? fields(t.substr(1)) : std::vector<std::string>{};
+    const std::vector<std::string> keyword_fields = t[0] == '*' ? inp_fields(t.substr(1)) : std::vector<std::string>{};
     if (!keyword_fields.empty() && upper(keyword_fields.front()) == "INCLUDE") {
       std::string input;
       for (const std::string& option : keyword_fields) {
@@ -102,7 +94,7 @@ std::vector<Block> blocks(const std::vector<Line>& lines) {
     }
     Block block;
     block.keyword = line;
-    const std::vector<std::string> parts = fields(line.text.substr(1));
+    const std::vector<std::string> parts = inp_fields(line.text.substr(1));
     if (parts.empty() || parts[0].empty()) fail(line, "", "empty keyword");
     // Collapse inner blanks of multi-word keywords ("*End Step" -> "END STEP").
     std::istringstream words(upper(parts[0]));
@@ -117,9 +109,18 @@ std::vector<Block> blocks(const std::vector<Line>& lines) {
   return out;
 }
 
+std::string read_deck_text(const std::string& path) {
+  io::require_readable_file(path, ".inp file");
+  std::ifstream file(path);
+  if (!file) throw InputError(path + ": cannot open .inp file");
+  std::stringstream content;
+  content << file.rdbuf();
+  return content.str();
+}
+
 class Reader {
  public:
-  explicit Reader(std::vector<std::string>* notes) : notes_(notes) {}
+  Reader(std::vector<std::string>* notes, bool report_skipped) : notes_(notes), report_skipped_(report_skipped) {}
 
   Mesh read(const std::vector<Block>& deck) {
     using Handler = void (Reader::*)(const Block&);
@@ -133,7 +134,7 @@ class Reader {
       if (it != handlers.end()) (this->*(it->second))(block);
       else if (ignored_count[block.name]++ == 0) ignored.push_back(&block);
     }
-    if (notes_)
+    if (notes_ && report_skipped_)
       for (const Block* block : ignored) notes_->push_back(ignored_note(*block, ignored_count[block->name]));
     for (auto* sets : {&mesh_.node_sets, &mesh_.element_sets})
       for (auto& [name, members] : *sets) {
@@ -213,7 +214,7 @@ class Reader {
     if (block.options.count("NSET"))
       set = &mesh_.node_sets[canonical(mesh_.node_sets, required(block, "NSET"))];
     for (const Line& line : block.data) {
-      const auto f = fields(line.text);
+      const auto f = inp_fields(line.text);
       if (f.size() < 2 || f.size() > 4)
         fail(line, block.name, "expected 'label, x, y, z', got " + std::to_string(f.size()) + " fields");
       const int label = integer(line, block.name, f[0]);
@@ -247,7 +248,7 @@ class Reader {
     const Line* first = nullptr;
     for (const Line& line : block.data) {
       if (!first) first = &line;
-      const std::vector<std::string> line_fields = fields(line.text);
+      const std::vector<std::string> line_fields = inp_fields(line.text);
       pending.insert(pending.end(), line_fields.begin(), line_fields.end());
       // ABAQUS continues an element on the next line when the line ends with a comma or is full
       // (16 entries: label and 15 nodes of a C3D20, as some writers omit the comma).
@@ -274,7 +275,7 @@ class Reader {
   void set_members(const Block& block, std::vector<int>& members, ToIndex to_index, Sets& sets) {
     const bool generate = block.options.count("GENERATE") > 0;
     for (const Line& line : block.data) {
-      const auto f = fields(line.text);
+      const auto f = inp_fields(line.text);
       if (generate) {
         if (f.size() < 2 || f.size() > 3)
           fail(line, block.name, "GENERATE expects 'first, last[, increment]'");
@@ -339,7 +340,7 @@ class Reader {
     const std::string name = required(block, "NAME");
     std::vector<Face> faces;
     for (const Line& line : block.data) {
-      const auto f = fields(line.text);
+      const auto f = inp_fields(line.text);
       if (f.empty() || f.size() > 2) fail(line, block.name, "expected 'elset or element label, Sn'");
       std::vector<int> elements;
       if (std::isdigit(static_cast<unsigned char>(f[0][0]))) {
@@ -376,25 +377,32 @@ class Reader {
   Mesh mesh_;
   std::unordered_map<int, int> node_index_, element_index_;
   std::vector<std::string>* notes_;
+  bool report_skipped_ = true;
 };
 
 }  // namespace
 
-Mesh parse_inp(const std::string& text, const std::string& name, std::vector<std::string>* notes) {
+std::vector<InpBlock> parse_inp_blocks(const std::string& text, const std::string& name) {
   std::vector<Line> lines;
   load(text, name, lines, 0);
-  Mesh mesh = Reader(notes).read(blocks(lines));
+  return blocks(lines);
+}
+
+std::vector<InpBlock> read_inp_blocks(const std::string& path) { return parse_inp_blocks(read_deck_text(path), path); }
+
+Mesh mesh_from_inp_blocks(const std::vector<InpBlock>& deck, const std::string& name,
+                          std::vector<std::string>* notes, bool report_skipped) {
+  Mesh mesh = Reader(notes, report_skipped).read(deck);
   check_elements(mesh, name);
   return mesh;
 }
 
+Mesh parse_inp(const std::string& text, const std::string& name, std::vector<std::string>* notes) {
+  return mesh_from_inp_blocks(parse_inp_blocks(text, name), name, notes, true);
+}
+
 Mesh read_inp(const std::string& path, std::vector<std::string>* notes) {
-  io::require_readable_file(path, ".inp file");
-  std::ifstream file(path);
-  if (!file) throw InputError(path + ": cannot open .inp file");
-  std::stringstream content;
-  content << file.rdbuf();
-  return parse_inp(content.str(), path, notes);
+  return parse_inp(read_deck_text(path), path, notes);
 }
 
 }  // namespace cushion::mesh

@@ -8,12 +8,40 @@
 /// each reported once (see read_inp). Coordinates are taken as mm. Node/element labels become
 /// 0-based indices. A deck that also meshes other parts (an indenter): mesh::element_set_part.
 #include <iosfwd>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "mesh/mesh.hpp"
 
 namespace cushion::mesh {
+
+/// One line of a deck, after *INCLUDE expansion (comment and blank lines dropped).
+struct InpLine {
+  std::string file;  ///< the file it came from (for messages)
+  int number = 0;    ///< 1-based line number in that file
+  std::string text;  ///< trimmed
+};
+
+/// A keyword line with its data lines.
+struct InpBlock {
+  InpLine keyword;
+  std::string name;                            ///< upper case, inner blanks collapsed, e.g. "END STEP"
+  std::map<std::string, std::string> options;  ///< parameters: upper-case keys, values as written ("" if none)
+  std::vector<InpLine> data;
+};
+
+/// The keyword blocks of a deck file, *INCLUDE expanded in place (InputError "file:line: ..." on a data
+/// line before the first keyword, an empty keyword or a missing include).
+std::vector<InpBlock> read_inp_blocks(const std::string& path);
+std::vector<InpBlock> parse_inp_blocks(const std::string& text, const std::string& name);
+
+/// Comma-separated fields of a line, trimmed; one trailing empty field (line ending in ',') dropped.
+std::vector<std::string> inp_fields(const std::string& text);
+
+/// The mesh of parsed blocks (as read_inp; `report_skipped` false: no notes about other keywords).
+Mesh mesh_from_inp_blocks(const std::vector<InpBlock>& deck, const std::string& name,
+                          std::vector<std::string>* notes, bool report_skipped);
 
 /// Reads an .inp file. Errors throw cushion::InputError "file:line: *KEYWORD: message" (bad number,
 /// unknown element TYPE, undefined or duplicate label, bad GENERATE, empty set, unknown set ...).

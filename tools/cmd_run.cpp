@@ -1,10 +1,13 @@
-// `cushion run CASE.json -o OUTDIR`: runs the steps of a case file and writes frames for ParaView
-// (OUTDIR/results.pvd), the history table (OUTDIR/history.csv) and the iteration log (OUTDIR/solver.log).
+// `cushion run CASE.json|DECK.inp -o OUTDIR`: runs the steps of a case file or an ABAQUS/CalculiX deck
+// (solver/deck/deck_reader.hpp) and writes frames for ParaView (OUTDIR/results.pvd), the history table
+// (OUTDIR/history.csv), the deck's print tables and the iteration log (OUTDIR/solver.log).
 #include <iostream>
 #include <memory>
 #include <optional>
 
+#include "io/input_error.hpp"
 #include "solver/analysis/analysis.hpp"
+#include "solver/deck/deck_reader.hpp"
 #include "solver/output/interrupt.hpp"
 #ifdef CUSHION_HAVE_PETSC
 #include "solver/petsc/petsc_session.hpp"
@@ -20,12 +23,23 @@ struct RunCommandOptions {
   io::OutputFolder out;
   int threads = -1;
   bool quiet = false;
+  std::string units;  ///< decks only; empty: mm-N-MPa
 };
+
+/// The case of a case file, or of a deck (.inp) in its unit system.
+solver::LoadedCase load(const RunCommandOptions& o) {
+  if (!solver::is_deck_file(o.case_file)) {
+    if (!o.units.empty())
+      throw InputError(o.case_file + ": --units: only for ABAQUS/CalculiX decks (.inp); a case file carries its units");
+    return solver::load_case(o.case_file);
+  }
+  return solver::load_deck(o.case_file, solver::deck_units(o.units.empty() ? "mm-N-MPa" : o.units));
+}
 
 void run_command(RunCommandOptions o) {
   o.out.inputs = {o.case_file};
   io::check_output_folder(o.out);  // before the mesh is built
-  const solver::LoadedCase loaded = solver::load_case(o.case_file);
+  const solver::LoadedCase loaded = load(o);
   o.out.inputs.insert(o.out.inputs.end(), {loaded.spec.material_file, loaded.spec.mesh.inp_file, loaded.spec.mesh.stl.file});
   for (const std::string& warning : loaded.warnings) std::cerr << "cushion: warning: " << warning << "\n";
   solver::RunOptions options;
@@ -54,7 +68,11 @@ void run_command(RunCommandOptions o) {
 const Registrar reg{"run", [](CLI::App& app) {
   auto o = std::make_shared<RunCommandOptions>();
   CLI::App* sub = app.add_subcommand("run", "run the steps of a case file (frames for ParaView, history CSV, log)");
-  sub->add_option("case", o->case_file, "case file (JSON, see cases/cube_compression/case.json)")->required();
+  sub->add_option("case", o->case_file,
+                  "case file (JSON, see cases/cube_compression/case.json) or ABAQUS/CalculiX deck (.inp)")
+      ->required();
+  sub->add_option("--units", o->units,
+                  "unit system of a deck (decks carry none): " + solver::deck_unit_names() + " (default mm-N-MPa)");
   add_output_folder_options(sub, o->out, "output folder (created; results.pvd, history.csv, solver.log)");
   o->out.markers = {"solver.log", "results.pvd"};
   sub->add_option("--threads", o->threads, "threads of the element loop (default: the case's solver.threads, 0 = all)")

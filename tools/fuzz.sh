@@ -3,7 +3,7 @@
 #
 #   tools/fuzz.sh [SECONDS_PER_HARNESS] [HARNESS...]
 #       SECONDS_PER_HARNESS  default 600; 0 = build only
-#       HARNESS              material protocol csv inp stl selectors campaign case (default: all)
+#       HARNESS              material protocol csv inp stl selectors campaign case deck (default: all)
 #   environment: FUZZ_JOBS=1|2 harnesses run at once (default 1; the machine is shared, never more than 2)
 #
 # Configures and builds ./build-fuzz with clang (-DCUSHION_FUZZ=ON: libraries with
@@ -17,7 +17,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-ALL=(material protocol csv inp stl selectors campaign case)
+ALL=(material protocol csv inp stl selectors campaign case deck)
 SECONDS_PER=${1:-600}
 if ! [[ "$SECONDS_PER" =~ ^[0-9]+$ ]]; then
   echo "usage: tools/fuzz.sh [SECONDS_PER_HARNESS] [HARNESS...] (harnesses: ${ALL[*]})" >&2
@@ -36,7 +36,7 @@ max_len() {
   case "$1" in
     selectors) echo 256 ;;
     material | protocol | campaign | csv | stl) echo 4096 ;;
-    inp | case) echo 8192 ;;
+    inp | case | deck) echo 8192 ;;
   esac
 }
 

@@ -129,6 +129,8 @@ MaterialDefinition build_material(const MaterialSpec& spec, const std::string& s
   try {
     if (spec.base == MaterialSpec::Base::hyperfoam)
       definition.elastic = std::make_shared<Hyperfoam>(spec.hyperfoam);
+    else if (spec.base == MaterialSpec::Base::ogden)
+      definition.elastic = std::make_shared<Ogden>(spec.ogden, spec.ogden_D);
     else
       definition.elastic = std::make_shared<NeoHookean>(spec.neo_mu, spec.neo_lambda);
     if (spec.prony.empty())
@@ -175,6 +177,8 @@ MaterialDefinition read_material_file(const std::filesystem::path& file) {
 }
 
 void write_material_file(const MaterialSpec& spec, const std::filesystem::path& file) {
+  if (spec.base == MaterialSpec::Base::ogden)
+    throw std::invalid_argument("write_material_file: an Ogden material has no material-file form");
   nlohmann::ordered_json json;
   json["name"] = spec.name;
   if (!spec.description.empty()) json["description"] = spec.description;

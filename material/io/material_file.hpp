@@ -28,6 +28,7 @@
 
 #include "material/effect_catalog.hpp"
 #include "material/hyperfoam.hpp"
+#include "material/ogden.hpp"
 #include "material/viscoelastic.hpp"
 
 namespace cushion::material {
@@ -37,9 +38,12 @@ struct MaterialSpec {
   std::string name = "material";
   std::string description;  ///< free text (provenance of the numbers); empty: not written
   double density = 0.0;  ///< [t/mm^3] (65 kg/m^3 = 6.5e-11 t/mm^3); 0 means "not given"
-  enum class Base { hyperfoam, neo_hookean } base = Base::hyperfoam;
+  /// ogden: ABAQUS *HYPERELASTIC, OGDEN / NEO HOOKE (from a deck only; material files have no "ogden" key)
+  enum class Base { hyperfoam, neo_hookean, ogden } base = Base::hyperfoam;
   std::vector<HyperfoamTerm> hyperfoam;  ///< base == hyperfoam
   double neo_mu = 0.0, neo_lambda = 0.0; ///< base == neo_hookean [MPa]
+  std::vector<OgdenTerm> ogden;          ///< base == ogden
+  std::vector<double> ogden_D;           ///< base == ogden: D_1..D_N [1/MPa]
   std::vector<PronyTerm> prony;          ///< empty: purely elastic
   ModuliConvention moduli = ModuliConvention::long_term;
   std::vector<EffectSpec> effects;       ///< optional physical effects, file units (material/effect_catalog.hpp)
@@ -63,6 +67,7 @@ MaterialDefinition read_material_file(const std::filesystem::path& file);
 MaterialDefinition parse_material_json(const std::string& text, const std::string& source);
 
 /// Writes a spec as a material file (kPa, kg/m^3, s), atomically (temporary file then rename).
+/// An Ogden base has no material-file form: std::invalid_argument.
 void write_material_file(const MaterialSpec& spec, const std::filesystem::path& file);
 
 }  // namespace cushion::material

@@ -8,6 +8,7 @@
 #include "io/input_error.hpp"
 #include "solver/analysis/boundary.hpp"
 #include "solver/analysis/contact_contributor.hpp"
+#include "solver/analysis/pressure_contributor.hpp"
 #ifdef CUSHION_HAVE_PETSC
 #include "solver/petsc/petsc_solver.hpp"
 #endif
@@ -31,8 +32,8 @@ LinearSolverFactory petsc_solver_factory(const CaseSpec& spec, bool symmetric) {
 
 /// The case's linear solver, checked against its tangent (and, for PETSc, the options and the build).
 LinearSolverFactory linear_solver_factory(const CaseSpec& spec) {
-  // F-bar and frictional contact tangents are unsymmetric.
-  const bool fbar = spec.mesh.formulation == HexFormulation::fbar || case_has_friction(spec);
+  // F-bar, frictional contact and follower pressure tangents are unsymmetric.
+  const bool fbar = spec.mesh.formulation == HexFormulation::fbar || case_has_friction(spec) || case_has_pressure(spec);
   auto direct = [](LinearSolverKind kind) -> LinearSolverFactory { return [kind] { return make_linear_solver(kind); }; };
   switch (spec.solver.linear_solver) {
     case SolverSpec::LinearSolver::cholmod:

@@ -75,6 +75,7 @@ struct ModelState {
   std::vector<bool> constrained;  ///< constrained DOFs of the last step (all false before the first)
   StateStore material;            ///< committed material state of every point
   double time = 0.0;              ///< total time [s]
+  Eigen::VectorXd f_load;         ///< concentrated loads at the end of the last static/visco step [N] (empty: none)
   /// Full velocities [mm/s] at the end of a dynamic step, for a directly following dynamic step
   /// (steady_state steps leave them; static and visco steps end at rest: empty).
   Eigen::VectorXd v;

@@ -1,6 +1,7 @@
 #include "solver/analysis/analysis_output.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <span>
 
 namespace cushion::solver {
@@ -83,14 +84,77 @@ std::vector<double> HistoryColumns::values(const Eigen::VectorXd& u, const Eigen
   return out;
 }
 
+namespace {
+
+/// Column names of a print request after "time_s".
+std::vector<std::string> print_columns(const PrintRequest& r) {
+  const bool node = r.kind == PrintRequest::Kind::node;
+  std::vector<std::string> columns{node ? "node" : "element"};
+  auto has = [&r](const char* q) { return std::find(r.quantities.begin(), r.quantities.end(), q) != r.quantities.end(); };
+  if (node && has("U")) columns.insert(columns.end(), {"U1_mm", "U2_mm", "U3_mm"});
+  if (node && has("RF")) columns.insert(columns.end(), {"RF1_N", "RF2_N", "RF3_N"});
+  if (!node && has("S")) columns.insert(columns.end(), {"S11_kPa", "S22_kPa", "S33_kPa", "S12_kPa", "S13_kPa", "S23_kPa"});
+  return columns;
+}
+
+/// File-name safe set name: letters, digits, '-' and '_' kept, anything else '_'.
+std::string file_safe(const std::string& name) {
+  std::string out = name;
+  for (char& c : out)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
+  return out;
+}
+
+}  // namespace
+
+PrintTables::PrintTables(const CaseSpec& spec, const mesh::Mesh& mesh, const std::filesystem::path& dir) : mesh_(mesh) {
+  for (const PrintRequest& r : spec.prints) {
+    const bool node = r.kind == PrintRequest::Kind::node;
+    const std::string file = (node ? "node_print_" : "el_print_") + file_safe(r.set) + ".csv";
+    tables_.push_back({&r, node ? &mesh.node_sets.at(r.set) : &mesh.element_sets.at(r.set),
+                       std::make_unique<HistoryWriter>(
+                           dir / file, print_columns(r),
+                           std::vector<std::string>{"cushion run " + spec.file.string() + ": " +
+                                                    (node ? "*NODE PRINT" : "*EL PRINT") + " of set " + r.set +
+                                                    " at every frame (total time)",
+                                                    node ? "U displacement [mm], RF reaction force [N]"
+                                                         : "S Cauchy stress averaged over the element [kPa]"})});
+  }
+}
+
+void PrintTables::write(const FrameData& frame) const {
+  for (const Table& t : tables_) {
+    const std::vector<std::string>& columns = t.writer->columns();
+    for (int m : *t.members) {
+      std::vector<double> row;
+      if (t.request->kind == PrintRequest::Kind::node) {
+        row.push_back(mesh_.node_labels.empty() ? m + 1 : mesh_.node_labels[m]);
+        for (std::size_t c = 1; c < columns.size(); ++c) {
+          const bool reaction = columns[c].rfind("RF", 0) == 0;
+          const int k = columns[c][reaction ? 2 : 1] - '1';
+          row.push_back(reaction ? frame.reaction_force[m](k) : frame.displacement[m](k));
+        }
+      } else {
+        row.push_back(mesh_.elements[m].label);
+        const Mat3& s = frame.cauchy_stress[m];
+        if (columns.size() > 1)
+          for (double v : {s(0, 0), s(1, 1), s(2, 2), s(0, 1), s(0, 2), s(1, 2)}) row.push_back(1e3 * v);  // MPa -> kPa
+      }
+      t.writer->write_row(frame.time, row);
+    }
+  }
+}
+
 AnalysisOutput::AnalysisOutput(const CaseSpec& spec, const mesh::Mesh& mesh, const std::filesystem::path& dir)
     : mesh_(mesh), series_(dir, "results"), columns_(spec, mesh),
       history_(dir / "history.csv", columns_.names(),
                {"cushion run " + spec.file.string() + ": history per converged increment",
-                "U = mean displacement of the set [mm], RF = sum of reaction forces over the set [N]"}) {}
+                "U = mean displacement of the set [mm], RF = sum of reaction forces over the set [N]"}),
+      prints_(spec, mesh, dir) {}
 
 void AnalysisOutput::write_frame(FrameData frame) {
   series_.write_frame(mesh_, frame);
+  prints_.write(frame);
   last_frame_time_ = frame.time;
 }
 

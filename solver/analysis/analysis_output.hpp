@@ -45,6 +45,25 @@ class HistoryColumns {
   std::vector<Column> columns_;
 };
 
+/// The CSV tables of the case's print requests (PrintRequest, case_spec.hpp): node_print_<set>.csv
+/// "time_s,node,U1_mm,U2_mm,U3_mm,RF1_N,RF2_N,RF3_N" (the requested groups) and el_print_<set>.csv
+/// "time_s,element,S11_kPa,S22_kPa,S33_kPa,S12_kPa,S13_kPa,S23_kPa" (element-mean Cauchy stress), one
+/// row per member and frame, labels as in the mesh file.
+class PrintTables {
+ public:
+  PrintTables(const CaseSpec& spec, const mesh::Mesh& mesh, const std::filesystem::path& dir);
+  void write(const FrameData& frame) const;
+
+ private:
+  struct Table {
+    const PrintRequest* request;
+    const std::vector<int>* members;
+    std::unique_ptr<HistoryWriter> writer;
+  };
+  const mesh::Mesh& mesh_;
+  std::vector<Table> tables_;
+};
+
 /// Files of one run: <dir>/results.pvd + results_NNNN.vtu and <dir>/history.csv.
 class AnalysisOutput {
  public:
@@ -66,6 +85,7 @@ class AnalysisOutput {
   ResultSeries series_;
   HistoryColumns columns_;
   HistoryWriter history_;
+  PrintTables prints_;
   double last_frame_time_ = -1.0;
 };
 

@@ -22,8 +22,9 @@ class StepBoundary {
  public:
   /// `u_start`: full displacement vector at the start of the step [mm] (start values of the default
   /// linear ramps); `t_start`: total time at the start of the step [s].
+  /// `f_start`: concentrated loads at the end of the previous step [N] (full vector; empty: none).
   StepBoundary(const mesh::Mesh& mesh, const StepSpec& step, const std::map<std::string, Amplitude>& amplitudes,
-               double t_start, const Eigen::VectorXd& u_start);
+               double t_start, const Eigen::VectorXd& u_start, Eigen::VectorXd f_start = Eigen::VectorXd());
 
   /// Writes the prescribed values at step time t [s] into the constrained entries of `u` (full
   /// vector [mm]). Conditions are applied in the order listed: on a DOF named by two conditions the
@@ -33,6 +34,10 @@ class StepBoundary {
   /// [mm], velocity [mm/s] and acceleration [mm/s^2] at step time t [s] into the constrained entries
   /// of the full vectors u, v, a (dynamic steps).
   void apply_motion(double t_step, Eigen::VectorXd& u, Eigen::VectorXd& v, Eigen::VectorXd& a) const;
+
+  /// Concentrated loads of the step (StepSpec::loads) at step time t [s] [N], full vector: each ramps
+  /// from its start value (or follows its amplitude); a start load the step does not list ramps to 0.
+  Eigen::VectorXd loads(double t_step) const;
 
   /// Corner times of the step's amplitudes as step times in (0, period) [s]: increments end there
   /// exactly, so piecewise-linear histories are followed without cutting corners.
@@ -48,6 +53,12 @@ class StepBoundary {
   double t_start_;
   Eigen::VectorXd u_start_;
   std::vector<Entry> entries_;
+  struct LoadEntry {
+    const LoadSpec* load;
+    std::vector<int> dofs;
+  };
+  Eigen::VectorXd f_start_;
+  std::vector<LoadEntry> loads_;
 };
 
 }  // namespace cushion::solver

@@ -9,6 +9,7 @@
 #include "solver/analysis/steady_state_step.hpp"
 #include "solver/analysis/step.hpp"
 #include "solver/analysis/contact_contributor.hpp"
+#include "solver/analysis/pressure_contributor.hpp"
 
 namespace cushion::solver {
 
@@ -35,7 +36,8 @@ class QuasiStaticStepper final : public IncrementStepper {
     boundary_.apply(t_end, u_new);
     for (int d : dofs_.constrained_dofs())
       a.prescribed_increment = std::max(a.prescribed_increment, std::abs(u_new(d) - model_.u(d)));
-    for (const auto& [d, reaction] : released_) f_ext_(d) = reaction * (1.0 - t_end / step_.period);
+    f_ext_ = boundary_.loads(t_end);
+    for (const auto& [d, reaction] : released_) f_ext_(d) += reaction * (1.0 - t_end / step_.period);
     a.problem =
         std::make_unique<EquilibriumProblem>(assembler_, model_.material, model_.u, u_new, f_ext_, a.dt_material);
     a.x = dofs_.gather_free(model_.u);
@@ -61,9 +63,10 @@ void QuasiStaticStep::run(AnalysisContext& ctx) {
   System& system = ctx.system(mask);
   ModelState& model = ctx.model();
   const DofMap& dofs = system.assembler->dofs();
-  const StepBoundary boundary(ctx.mesh(), spec_, ctx.spec().amplitudes, model.time, model.u);
+  const StepBoundary boundary(ctx.mesh(), spec_, ctx.spec().amplitudes, model.time, model.u, model.f_load);
   std::vector<std::shared_ptr<ResidualContributor>> contributors = contributors_;
   for (auto& c : step_contacts(ctx, spec_, dofs)) contributors.push_back(std::move(c));
+  if (auto pressure = step_pressures(ctx, spec_, dofs)) contributors.push_back(std::move(pressure));
   const bool visco = spec_.type == StepSpec::Type::visco;
   ctx.log() << "step '" << spec_.name << "' (" << (visco ? "visco" : spec_.long_term ? "static, long term" : "static")
           << ", " << spec_.period << " s, " << dofs.num_free() << " free DOFs, "
@@ -72,6 +75,7 @@ void QuasiStaticStep::run(AnalysisContext& ctx) {
   QuasiStaticStepper stepper(model, spec_, boundary, dofs, *system.assembler, mask);
   const IncrementControl control = run_increment_loop(ctx, spec_, system, contributors, boundary.corner_times(), stepper);
   model.constrained = mask;
+  model.f_load = boundary.loads(spec_.period);
   model.v.resize(0);  // a quasi-static step ends at rest
   ctx.log() << "step '" << spec_.name << "' done: " << control.increments() << " increments, " << control.cutbacks()
           << " cut-backs\n";

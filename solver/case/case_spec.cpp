@@ -30,6 +30,16 @@ double Amplitude::second_rate(double t) const {
   return 0.0;
 }
 
+double ramped_value(double value, const std::optional<std::string>& amplitude,
+                    const std::map<std::string, Amplitude>& amplitudes, double start_value, double t_step,
+                    double period, double t_start) {
+  if (amplitude) {
+    const Amplitude& a = amplitudes.at(*amplitude);
+    return value * a.at(a.total_time ? t_start + t_step : t_step);
+  }
+  return start_value + (value - start_value) * std::clamp(t_step / period, 0.0, 1.0);
+}
+
 PrescribedMotion prescribed_motion(const BoundarySpec& bc, const std::map<std::string, Amplitude>& amplitudes,
                                    double start_value, double t_step, double period, double t_start) {
   if (bc.kind != BoundarySpec::Kind::displacement) return {};
@@ -38,9 +48,9 @@ PrescribedMotion prescribed_motion(const BoundarySpec& bc, const std::map<std::s
     const double t = a.total_time ? t_start + t_step : t_step;
     return {bc.value * a.at(t), bc.value * a.rate(t), bc.value * a.second_rate(t)};
   }
-  const double w = std::clamp(t_step / period, 0.0, 1.0);
   const bool ramping = t_step > 0.0 && t_step <= period;
-  return {start_value + (bc.value - start_value) * w, ramping ? (bc.value - start_value) / period : 0.0, 0.0};
+  return {ramped_value(bc.value, std::nullopt, amplitudes, start_value, t_step, period, t_start),
+          ramping ? (bc.value - start_value) / period : 0.0, 0.0};
 }
 
 double prescribed_value(const BoundarySpec& bc, const std::map<std::string, Amplitude>& amplitudes,

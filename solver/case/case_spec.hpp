@@ -171,6 +171,33 @@ struct BoundarySpec {
 double prescribed_value(const BoundarySpec& bc, const std::map<std::string, Amplitude>& amplitudes,
                         double start_value, double t_step, double period, double t_start);
 
+/// Concentrated force on every node of a set (ABAQUS *CLOAD; from decks, static and visco steps only).
+/// Like a displacement it ramps linearly over the step from the value at the end of the previous
+/// step (0 at first), or follows value * a(t) with an amplitude. Dead load (fixed direction).
+struct LoadSpec {
+  std::string set;                       ///< node set (each node gets `value`)
+  int component = 0;                     ///< 0, 1, 2: x, y, z
+  double value = 0.0;                    ///< [N] per node
+  std::optional<std::string> amplitude;  ///< name in CaseSpec::amplitudes; none: linear ramp
+  std::string key;                       ///< "FILE:LINE", for messages
+};
+
+/// Pressure on one element face (ABAQUS *DLOAD Pn; from decks, static and visco steps only): a
+/// follower load on the current (deformed) face, positive pushing into the solid.
+struct PressureSpec {
+  mesh::Face face;
+  double value = 0.0;                    ///< [MPa] at the end of the step
+  double start_value = 0.0;              ///< [MPa] at the start of the step (linear ramp; unused with an amplitude)
+  std::optional<std::string> amplitude;  ///< name in CaseSpec::amplitudes; none: linear ramp
+  std::string key;                       ///< "FILE:LINE", for messages
+};
+
+/// Value at step time `t_step` [s] of a quantity with end value `value` and optional amplitude
+/// (value * a(t)); without amplitude a linear ramp from `start_value` over `period` [s] (ABAQUS).
+double ramped_value(double value, const std::optional<std::string>& amplitude,
+                    const std::map<std::string, Amplitude>& amplitudes, double start_value, double t_step,
+                    double period, double t_start);
+
 /// Prescribed displacement [mm], velocity [mm/s] and acceleration [mm/s^2] of one component.
 struct PrescribedMotion {
   double u = 0.0, v = 0.0, a = 0.0;
@@ -221,6 +248,9 @@ struct StepSpec {
   IncrementSpec increment;
   std::vector<BoundarySpec> boundary;
   std::vector<ContactSpec> contact;  ///< rigid indenters (contact_spec.hpp)
+  std::vector<LoadSpec> loads;       ///< concentrated forces, static/visco only (decks); the complete
+                                     ///< list: a load of the previous step not listed ramps to 0
+  std::vector<PressureSpec> pressures;  ///< face pressures, static/visco only (decks): the complete list
   OutputSpec output;
   SteadyStateSpec steady_state;      ///< type steady_state only (steady_state_spec.hpp)
   DynamicSpec dynamic;               ///< type dynamic only
@@ -240,6 +270,15 @@ struct SolverSpec {
   double max_contraction = 0.5;        ///< [-] a reused factorization is kept while ||r_k|| <= this ||r_k-1||
 };
 
+/// Per-node or per-element values written at every frame to a CSV (ABAQUS *NODE PRINT / *EL PRINT of
+/// a deck): `<prefix>_<set>.csv`, one row per node (element) and frame. Node: U [mm] and/or RF [N];
+/// element: S = Cauchy stress averaged over the element's integration points [kPa].
+struct PrintRequest {
+  enum class Kind { node, element } kind = Kind::node;
+  std::string set;                      ///< node set (node) or element set (element)
+  std::vector<std::string> quantities;  ///< node: "U", "RF"; element: "S"
+};
+
 /// A parsed, validated case file.
 struct CaseSpec {
   std::filesystem::path file;           ///< the case file as given (for messages)
@@ -250,6 +289,7 @@ struct CaseSpec {
   std::map<std::string, Amplitude> amplitudes;
   std::vector<StepSpec> steps;
   SolverSpec solver;
+  std::vector<PrintRequest> prints;  ///< decks only (*NODE PRINT, *EL PRINT)
 };
 
 /// History columns of a run (union over steps, in order of first appearance), without "time_s".

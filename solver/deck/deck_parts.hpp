@@ -1,0 +1,100 @@
+#pragma once
+/// Internal to solver/deck: the translation state and the keyword handlers (one per keyword, after
+/// CalculiX's reader). deck_reader.cpp dispatches, deck_material.cpp reads materials and sections,
+/// deck_step.cpp steps, boundary conditions, loads and output requests.
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mesh/inp_reader.hpp"
+#include "solver/deck/deck_reader.hpp"
+
+namespace cushion::solver::deck {
+
+using Block = mesh::InpBlock;
+using Line = mesh::InpLine;
+
+/// "<file>:<line>"
+std::string where(const Line& line);
+/// InputError "<file>:<line>: *KEY: problem".
+[[noreturn]] void fail(const Block& block, const Line& line, const std::string& problem);
+/// InputError "<file>:<line>: keyword *KEY is not supported by cushion run".
+[[noreturn]] void unsupported_keyword(const Block& block);
+/// InputError "<file>:<line>: parameter P of *KEY is not supported by cushion run" for the first
+/// parameter of `block` not in `allowed`.
+void check_parameters(const Block& block, const std::vector<std::string>& allowed);
+/// Value of parameter `key` ("" if given without value), or nullopt.
+std::optional<std::string> parameter(const Block& block, const std::string& key);
+/// Value of a required parameter (InputError "missing KEY=" otherwise).
+std::string required_parameter(const Block& block, const std::string& key);
+/// Upper case copy.
+std::string upper(std::string s);
+/// Finite number / whole number of one field of a data line (InputError naming the line otherwise).
+double number(const Block& block, const Line& line, const std::string& field);
+int integer(const Block& block, const Line& line, const std::string& field);
+/// The first `count` numbers of the block's data lines read in order across lines (ABAQUS: 8 per
+/// line); empty fields read as 0. A further non-empty field (temperature) or a further data line
+/// (temperature dependence) is refused.
+std::vector<double> packed_numbers(const Block& block, std::size_t count);
+
+/// A material being read (*MATERIAL and the option keywords after it).
+struct DeckMaterial {
+  std::string name;  ///< as written
+  Line defined;      ///< the *MATERIAL line
+  material::MaterialSpec spec;
+  bool has_base = false;    ///< a *HYPERFOAM or *HYPERELASTIC was read
+  bool has_prony = false;   ///< a *VISCOELASTIC was read
+  std::optional<Line> moduli;  ///< where MODULI= was given (with *VISCOELASTIC only)
+};
+
+/// Everything read so far.
+struct State {
+  std::filesystem::path file;
+  DeckUnits units;
+  LoadedCase out;  ///< spec (steps, amplitudes, prints), mesh (read first), material (at the end)
+  std::map<std::string, DeckMaterial> materials;  ///< by upper-case name
+  std::string current_material;                   ///< upper-case name while material options may follow
+  struct Section {
+    Line defined;
+    std::string elset, material;  ///< canonical element set, upper-case material name
+  };
+  std::vector<Section> sections;
+  std::vector<BoundarySpec> boundary;  ///< in effect (model data, then changed by each step)
+  std::vector<LoadSpec> loads;         ///< in effect
+  std::vector<PressureSpec> pressures; ///< in effect (start_value: at the start of the open step)
+  std::optional<std::size_t> step;     ///< index in out.spec.steps of the open *STEP
+  bool procedure = false;              ///< the open step has its *STATIC / *VISCO
+  std::map<int, int> node_index;       ///< node label -> index
+};
+
+/// Node-set name for a data-line entry: a node label (a one-node set "#node <label>" is added to the
+/// mesh) or the name of a node set (case-insensitive, its name as defined).
+std::string node_target(State& s, const Block& block, const Line& line, const std::string& field);
+/// Element set by name, case-insensitive (its name as defined).
+std::string element_set(State& s, const Block& block, const Line& line, const std::string& name);
+
+// Handlers (deck_material.cpp).
+void material(State& s, const Block& b);
+void hyperfoam(State& s, const Block& b);
+void hyperelastic(State& s, const Block& b);
+void viscoelastic(State& s, const Block& b);
+void density(State& s, const Block& b);
+void solid_section(State& s, const Block& b);
+/// The case's material after every block: the one material of the sections, covering every element.
+void finish_material(State& s);
+
+// Handlers (deck_step.cpp).
+void amplitude(State& s, const Block& b);
+void boundary(State& s, const Block& b);
+void cload(State& s, const Block& b);
+void dload(State& s, const Block& b);
+void step(State& s, const Block& b);
+void static_procedure(State& s, const Block& b);
+void visco_procedure(State& s, const Block& b);
+void end_step(State& s, const Block& b);
+void node_print(State& s, const Block& b);
+void el_print(State& s, const Block& b);
+void result_file(State& s, const Block& b);
+
+}  // namespace cushion::solver::deck

@@ -1,0 +1,294 @@
+// Steps, conditions and output requests of a deck (deck_parts.hpp): *AMPLITUDE, *BOUNDARY, *CLOAD,
+// *STEP, *STATIC, *VISCO, *END STEP, *NODE PRINT, *EL PRINT, *NODE FILE, *EL FILE. Conditions persist
+// from step to step (ABAQUS OP=MOD) and OP=NEW removes those in effect; each StepSpec gets the
+// complete list in effect at its *END STEP, as a case file's step does.
+#include <algorithm>
+#include <array>
+#include <cctype>
+
+#include "io/input_error.hpp"
+#include "solver/deck/deck_parts.hpp"
+
+namespace cushion::solver::deck {
+
+namespace {
+
+StepSpec& open_step(State& s, const Block& b) {
+  if (!s.step) fail(b, b.keyword, "must come inside a *STEP");
+  return s.out.spec.steps[*s.step];
+}
+
+/// Degree of freedom 1..3 as a component 0..2 (rotations 4..6 refused).
+int component(const Block& b, const Line& line, const std::string& field) {
+  const int dof = integer(b, line, field);
+  if (dof >= 4 && dof <= 6) fail(b, line, "degree of freedom " + field + " is a rotation: solid elements have none");
+  if (dof < 1 || dof > 6) fail(b, line, "degree of freedom must be 1, 2 or 3, found " + field);
+  return dof - 1;
+}
+
+/// AMPLITUDE= of *BOUNDARY / *CLOAD: the (upper-case) name of a defined amplitude.
+std::optional<std::string> amplitude_parameter(const State& s, const Block& b) {
+  const auto name = parameter(b, "AMPLITUDE");
+  if (!name) return std::nullopt;
+  if (!s.step) fail(b, b.keyword, "AMPLITUDE= is only allowed inside a *STEP");
+  if (!s.out.spec.amplitudes.count(upper(*name))) fail(b, b.keyword, "unknown amplitude '" + *name + "'");
+  return upper(*name);
+}
+
+/// OP=MOD (default) or OP=NEW (true: the conditions in effect are removed first).
+bool op_new(const State& s, const Block& b) {
+  const auto op = parameter(b, "OP");
+  if (!op || upper(*op) == "MOD") return false;
+  if (upper(*op) != "NEW") fail(b, b.keyword, "OP must be MOD or NEW");
+  if (!s.step) fail(b, b.keyword, "OP=NEW is only allowed inside a *STEP");
+  return true;
+}
+
+/// Components a *BOUNDARY type word fixes (solids: symmetry planes fix one translation).
+std::optional<std::array<bool, 3>> boundary_type(const std::string& word) {
+  const std::string w = upper(word);
+  if (w == "ENCASTRE" || w == "PINNED") return std::array<bool, 3>{true, true, true};
+  if (w == "XSYMM") return std::array<bool, 3>{true, false, false};
+  if (w == "YSYMM") return std::array<bool, 3>{false, true, false};
+  if (w == "ZSYMM") return std::array<bool, 3>{false, false, true};
+  return std::nullopt;
+}
+
+/// Adds a one-component condition, replacing one in effect on the same set and component.
+void put_boundary(State& s, BoundarySpec bc, int c) {
+  bc.dofs = {c == 0, c == 1, c == 2};
+  auto same = [&](const BoundarySpec& o) { return o.set == bc.set && o.dofs[c]; };
+  s.boundary.erase(std::remove_if(s.boundary.begin(), s.boundary.end(), same), s.boundary.end());
+  s.boundary.push_back(std::move(bc));
+}
+
+/// "initial, total, min, max" of *STATIC / *VISCO (ABAQUS defaults: total 1, initial = total,
+/// min = min(initial, 1e-5 total), max = total).
+void read_increments(const Block& b, StepSpec& step) {
+  if (b.data.size() > 1) fail(b, b.data[1], "expected one data line 'initial, total, min, max'");
+  std::vector<std::string> f = b.data.empty() ? std::vector<std::string>{} : mesh::inp_fields(b.data.front().text);
+  if (f.size() > 4) fail(b, b.data.front(), "expected 'initial, total, min, max', got " + std::to_string(f.size()) + " fields");
+  f.resize(4);
+  const Line& line = b.data.empty() ? b.keyword : b.data.front();
+  auto value = [&](int k, double fallback) { return f[k].empty() ? fallback : number(b, line, f[k]); };
+  step.period = value(1, 1.0);
+  step.increment.initial = value(0, step.period);
+  step.increment.min = value(2, std::min(step.increment.initial, 1e-5 * step.period));
+  step.increment.max = value(3, step.period);
+  const IncrementSpec& i = step.increment;
+  if (!(step.period > 0.0) || !(i.min > 0.0) || !(i.min <= i.initial) || !(i.initial <= i.max) ||
+      !(i.initial <= step.period))
+    fail(b, line, "need total > 0 and 0 < min <= initial <= max, initial <= total");
+}
+
+void procedure(State& s, const Block& b, StepSpec::Type type) {
+  StepSpec& step = open_step(s, b);
+  if (s.procedure) fail(b, b.keyword, "the step already has its procedure");
+  s.procedure = true;
+  step.type = type;
+  read_increments(b, step);
+}
+
+/// Output variables of a print request: the supported ones; the others are warned about and skipped.
+std::vector<std::string> print_variables(State& s, const Block& b, const std::vector<std::string>& supported) {
+  std::vector<std::string> out;
+  for (const Line& line : b.data)
+    for (const std::string& f : mesh::inp_fields(line.text)) {
+      const std::string v = upper(f);
+      if (std::find(supported.begin(), supported.end(), v) != supported.end()) out.push_back(v);
+      else if (!v.empty())
+        s.out.warnings.push_back(where(line) + ": *" + b.name + ": output variable " + f + " skipped (cushion prints " +
+                                 (supported.size() > 1 ? "U and RF" : "S") + " here; frames hold more)");
+    }
+  return out;
+}
+
+/// Output parameters other than the set are warned about and skipped.
+void warn_output_parameters(State& s, const Block& b, const std::string& set_key) {
+  for (const auto& [key, value] : b.options)
+    if (key != set_key)
+      s.out.warnings.push_back(where(b.keyword) + ": parameter " + key + " of *" + b.name +
+                               " skipped (cushion prints at every frame)");
+}
+
+void add_print(State& s, PrintRequest::Kind kind, const std::string& set, const std::vector<std::string>& quantities) {
+  auto& prints = s.out.spec.prints;
+  auto it = std::find_if(prints.begin(), prints.end(), [&](const PrintRequest& p) { return p.kind == kind && p.set == set; });
+  if (it == prints.end()) it = prints.insert(prints.end(), PrintRequest{kind, set, {}});
+  for (const std::string& q : quantities)
+    if (std::find(it->quantities.begin(), it->quantities.end(), q) == it->quantities.end()) it->quantities.push_back(q);
+}
+
+}  // namespace
+
+void amplitude(State& s, const Block& b) {
+  check_parameters(b, {"NAME", "TIME", "DEFINITION", "VALUE"});
+  const std::string name = upper(required_parameter(b, "NAME"));
+  if (s.out.spec.amplitudes.count(name)) fail(b, b.keyword, "amplitude " + name + " is defined twice");
+  const std::string time = upper(parameter(b, "TIME").value_or("STEP TIME"));
+  if (time != "STEP TIME" && time != "TOTAL TIME") fail(b, b.keyword, "TIME must be STEP TIME or TOTAL TIME");
+  if (upper(parameter(b, "DEFINITION").value_or("TABULAR")) != "TABULAR")
+    fail(b, b.keyword, "only DEFINITION=TABULAR is supported by cushion run");
+  if (upper(parameter(b, "VALUE").value_or("RELATIVE")) != "RELATIVE")
+    fail(b, b.keyword, "only VALUE=RELATIVE is supported by cushion run");
+  Amplitude a;
+  a.total_time = time == "TOTAL TIME";
+  for (const Line& line : b.data) {
+    const std::vector<std::string> f = mesh::inp_fields(line.text);
+    if (f.size() % 2) fail(b, line, "expected pairs 'time, value'");
+    for (std::size_t k = 0; k < f.size(); k += 2) {
+      const double t = number(b, line, f[k]);
+      if (!a.time.empty() && !(t > a.time.back())) fail(b, line, "times must increase strictly");
+      a.time.push_back(t);
+      a.value.push_back(number(b, line, f[k + 1]));
+    }
+  }
+  if (a.time.empty()) fail(b, b.keyword, "no 'time, value' pairs");
+  s.out.spec.amplitudes[name] = a;
+}
+
+void boundary(State& s, const Block& b) {
+  check_parameters(b, {"OP", "AMPLITUDE"});
+  if (op_new(s, b)) s.boundary.clear();
+  const std::optional<std::string> amp = amplitude_parameter(s, b);
+  for (const Line& line : b.data) {
+    const std::vector<std::string> f = mesh::inp_fields(line.text);
+    if (f.size() < 2 || f.size() > 4) fail(b, line, "expected 'node or set, first dof[, last dof[, value]]'");
+    BoundarySpec bc;
+    bc.set = node_target(s, b, line, f[0]);
+    bc.amplitude = amp;
+    bc.key = where(line);
+    if (const auto type = boundary_type(f[1])) {
+      if (f.size() > 2) fail(b, line, "a type (" + f[1] + ") takes no further fields");
+      for (int c = 0; c < 3; ++c)
+        if ((*type)[c]) put_boundary(s, bc, c);
+      continue;
+    }
+    const int first = component(b, line, f[1]);
+    const int last = f.size() > 2 && !f[2].empty() ? component(b, line, f[2]) : first;
+    if (last < first) fail(b, line, "last dof before first dof");
+    bc.value = f.size() > 3 ? number(b, line, f[3]) * s.units.length : 0.0;
+    if (bc.value != 0.0 && !s.step) fail(b, line, "a non-zero value is only allowed inside a *STEP");
+    for (int c = first; c <= last; ++c) put_boundary(s, bc, c);
+  }
+}
+
+void cload(State& s, const Block& b) {
+  check_parameters(b, {"OP", "AMPLITUDE"});
+  open_step(s, b);
+  if (op_new(s, b)) s.loads.clear();
+  const std::optional<std::string> amp = amplitude_parameter(s, b);
+  for (const Line& line : b.data) {
+    const std::vector<std::string> f = mesh::inp_fields(line.text);
+    if (f.size() != 3) fail(b, line, "expected 'node or set, dof, magnitude'");
+    LoadSpec load{node_target(s, b, line, f[0]), component(b, line, f[1]), number(b, line, f[2]) * s.units.force, amp,
+                  where(line)};
+    auto same = [&](const LoadSpec& o) { return o.set == load.set && o.component == load.component; };
+    s.loads.erase(std::remove_if(s.loads.begin(), s.loads.end(), same), s.loads.end());
+    s.loads.push_back(std::move(load));
+  }
+}
+
+void dload(State& s, const Block& b) {
+  check_parameters(b, {"OP", "AMPLITUDE"});
+  open_step(s, b);
+  if (op_new(s, b))
+    for (PressureSpec& p : s.pressures) p.value = 0.0, p.amplitude.reset();  // removed: ramped down to 0
+  const std::optional<std::string> amp = amplitude_parameter(s, b);
+  for (const Line& line : b.data) {
+    const std::vector<std::string> f = mesh::inp_fields(line.text);
+    if (f.size() != 3) fail(b, line, "expected 'element or element set, Pn, magnitude'");
+    const std::string type = upper(f[1]);
+    if (type.size() != 2 || type[0] != 'P' || type[1] < '1' || type[1] > '6')
+      fail(b, line, "load type " + f[1] + " is not supported by cushion run (face pressures P1..P6 only)");
+    std::vector<int> elements;
+    if (std::isdigit(static_cast<unsigned char>(f[0][0]))) {
+      const int label = integer(b, line, f[0]);
+      const auto& els = s.out.mesh.elements;
+      const auto it = std::find_if(els.begin(), els.end(), [label](const mesh::Element& e) { return e.label == label; });
+      if (it == els.end()) fail(b, line, "undefined element label " + f[0]);
+      elements.push_back(static_cast<int>(it - els.begin()));
+    } else {
+      elements = s.out.mesh.element_sets.at(element_set(s, b, line, f[0]));
+    }
+    const double value = number(b, line, f[2]) * s.units.stress();
+    for (int e : elements) {
+      const int face = type[1] - '1';
+      if (face >= mesh::faces_per_element(s.out.mesh.elements[e].type))
+        fail(b, line, "element " + std::to_string(s.out.mesh.elements[e].label) + " has no face " + f[1]);
+      auto it = std::find_if(s.pressures.begin(), s.pressures.end(),
+                             [&](const PressureSpec& p) { return p.face.element == e && p.face.face == face; });
+      if (it == s.pressures.end()) it = s.pressures.insert(s.pressures.end(), PressureSpec{{e, face}, 0.0, 0.0, {}, ""});
+      it->value = value, it->amplitude = amp, it->key = where(line);
+    }
+  }
+}
+
+void step(State& s, const Block& b) {
+  check_parameters(b, {"NLGEOM", "INC", "NAME"});
+  if (s.step) fail(b, b.keyword, "a *STEP inside a *STEP (missing *END STEP)");
+  StepSpec step;
+  step.name = parameter(b, "NAME").value_or("Step-" + std::to_string(s.out.spec.steps.size() + 1));
+  for (const StepSpec& other : s.out.spec.steps)
+    if (upper(other.name) == upper(step.name)) fail(b, b.keyword, "step name " + step.name + " is used twice");
+  if (const auto inc = parameter(b, "INC")) {
+    step.increment.max_increments = integer(b, b.keyword, *inc);
+    if (step.increment.max_increments < 1) fail(b, b.keyword, "INC must be >= 1");
+  }
+  const auto nlgeom = parameter(b, "NLGEOM");
+  if (!nlgeom || upper(*nlgeom) == "NO")
+    s.out.warnings.push_back(where(b.keyword) +
+                             ": *STEP without NLGEOM: cushion always solves the geometrically nonlinear problem");
+  else if (!nlgeom->empty() && upper(*nlgeom) != "YES")
+    fail(b, b.keyword, "NLGEOM must be YES or NO");
+  s.out.spec.steps.push_back(step);
+  s.step = s.out.spec.steps.size() - 1;
+  for (PressureSpec& p : s.pressures) p.start_value = p.amplitude ? 0.0 : p.value;  // ramps start at the last value
+  s.procedure = false;
+}
+
+void static_procedure(State& s, const Block& b) {
+  check_parameters(b, {"DIRECT", "LONG TERM"});
+  procedure(s, b, StepSpec::Type::static_);
+  StepSpec& step = open_step(s, b);
+  step.long_term = parameter(b, "LONG TERM").has_value();
+  step.increment.fixed = parameter(b, "DIRECT").has_value();
+}
+
+void visco_procedure(State& s, const Block& b) {
+  check_parameters(b, {"DIRECT"});
+  procedure(s, b, StepSpec::Type::visco);
+  open_step(s, b).increment.fixed = parameter(b, "DIRECT").has_value();
+}
+
+void end_step(State& s, const Block& b) {
+  check_parameters(b, {});
+  StepSpec& step = open_step(s, b);
+  if (!s.procedure) fail(b, b.keyword, "the step has no procedure (*STATIC or *VISCO)");
+  step.boundary = s.boundary;
+  step.loads = s.loads;
+  step.pressures = s.pressures;
+  auto removed = [](const PressureSpec& p) { return p.value == 0.0 && !p.amplitude; };
+  s.pressures.erase(std::remove_if(s.pressures.begin(), s.pressures.end(), removed), s.pressures.end());
+  s.step.reset();
+}
+
+void node_print(State& s, const Block& b) {
+  open_step(s, b);
+  warn_output_parameters(s, b, "NSET");
+  const std::string set = node_target(s, b, b.keyword, required_parameter(b, "NSET"));
+  add_print(s, PrintRequest::Kind::node, set, print_variables(s, b, {"U", "RF"}));
+}
+
+void el_print(State& s, const Block& b) {
+  open_step(s, b);
+  warn_output_parameters(s, b, "ELSET");
+  const std::string set = element_set(s, b, b.keyword, required_parameter(b, "ELSET"));
+  add_print(s, PrintRequest::Kind::element, set, print_variables(s, b, {"S"}));
+}
+
+void result_file(State& s, const Block& b) {
+  open_step(s, b);  // the frames (results.pvd) are written at every increment anyway
+}
+
+}  // namespace cushion::solver::deck
