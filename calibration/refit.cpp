@@ -9,12 +9,9 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <functional>
 #include <limits>
 #include <stdexcept>
 #include <thread>
-#include <cstdio>
-#include <cstdlib>
 
 #include "calibration/exponent_grid.hpp"
 #include "calibration/prony_fit.hpp"
