@@ -6,13 +6,14 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <functional>
 #include <limits>
 #include <stdexcept>
 #include <thread>
 
+#include "calibration/exponent_grid.hpp"
 #include "calibration/prony_fit.hpp"
 #include "material/hyperfoam.hpp"
 #include "material/stability.hpp"
@@ -75,6 +76,21 @@ struct JointResidual {
   template <typename T>
   bool operator()(T const* const* p, T* r) const {
     return residuals(*g, p[0], r);
+  }
+};
+
+/// The bound sum a_i <= a_sum_max (the long-term modulus at least 1/(1 + a_sum_max) of the instantaneous one) as a
+/// penalty residual, zero inside: from one quasi-static rate the slow terms and the long-term curve trade off, and
+/// without it the polish may carry the whole response by Prony terms on a vanishing long-term curve.
+struct RatioSumBound {
+  std::size_t first, count;  ///< a_i at x[first .. first + count)
+  double a_sum_max, weight;
+  template <typename T>
+  bool operator()(T const* const* p, T* r) const {
+    T sum(0.0);
+    for (std::size_t i = 0; i < count; ++i) sum += p[0][first + i];
+    r[0] = sum > T(a_sum_max) ? weight * (sum - a_sum_max) : T(0.0);
+    return true;
   }
 };
 
@@ -179,21 +195,236 @@ InnerSolution alternating(const std::vector<const TermBasis*>& terms, const Eige
   return s;
 }
 
-/// Every N-subset of the grid (indices, increasing).
-std::vector<std::vector<std::size_t>> subsets(std::size_t size, std::size_t N) {
-  std::vector<std::vector<std::size_t>> out;
-  std::vector<std::size_t> pick(N);
-  std::function<void(std::size_t, std::size_t)> choose = [&](std::size_t depth, std::size_t from) {
-    if (depth == N) {
-      out.push_back(pick);
-      return;
+/// Relaxed screen of the exponent subsets. For fixed exponents the model sum_j mu_j (B_j + Hm_j a) is linear in
+/// (mu_j, b_ji = mu_j a_i) once the rank-one structure b = mu a^T is dropped: one linear least-squares problem per
+/// subset whose cost is a lower bound of the subset's true cost (zero at the true exponents of noise-free data),
+/// solved on the Gram matrix of every grid column (unit-scaled, with a tiny ridge) so that a subset costs a small
+/// dense solve whatever the number of rows.
+class RelaxedScreen {
+ public:
+  RelaxedScreen(const std::vector<TermBasis>& basis, const Eigen::VectorXd& y) : block_(1 + basis.front().Hm.cols()) {
+    Eigen::MatrixXd X(y.size(), Eigen::Index(basis.size()) * block_);
+    for (std::size_t k = 0; k < basis.size(); ++k) {
+      X.col(Eigen::Index(k) * block_) = basis[k].B;
+      X.middleCols(Eigen::Index(k) * block_ + 1, block_ - 1) = basis[k].Hm;
     }
-    for (std::size_t k = from; k < size; ++k) {
-      pick[depth] = k;
-      choose(depth + 1, k + 1);
+    scale_ = X.colwise().norm().transpose();
+    for (Eigen::Index j = 0; j < scale_.size(); ++j) scale_(j) = scale_(j) > 0.0 ? scale_(j) : 1.0;
+    X = X * scale_.cwiseInverse().asDiagonal();
+    gram_ = X.transpose() * X;
+    rhs_ = X.transpose() * y;
+    yy_ = y.squaredNorm();
+  }
+
+  /// Relaxed cost 0.5 |model - y|^2 of a subset (indices into the basis), and its moduli mu_j and ratios a
+  /// (the rank-one projection of b, clipped at 0).
+  double solve(const std::vector<std::size_t>& combo, Eigen::VectorXd& mu, Eigen::VectorXd& a) const {
+    const Eigen::Index n = Eigen::Index(combo.size()) * block_;
+    std::vector<Eigen::Index> idx;
+    for (std::size_t k : combo)
+      for (Eigen::Index i = 0; i < block_; ++i) idx.push_back(Eigen::Index(k) * block_ + i);
+    Eigen::MatrixXd G(n, n);
+    Eigen::VectorXd c(n);
+    for (Eigen::Index r = 0; r < n; ++r) {
+      c(r) = rhs_(idx[r]);
+      for (Eigen::Index q = 0; q < n; ++q) G(r, q) = gram_(idx[r], idx[q]);
     }
+    const Eigen::VectorXd x = (G + 1e-10 * Eigen::MatrixXd::Identity(n, n)).ldlt().solve(c);
+    const double cost = 0.5 * std::max(0.0, yy_ - 2.0 * c.dot(x) + x.dot(G * x));
+    const Eigen::Index N = Eigen::Index(combo.size()), M = block_ - 1;
+    mu.resize(N);
+    Eigen::MatrixXd b(N, M);
+    for (Eigen::Index j = 0; j < N; ++j) {
+      mu(j) = x(j * block_) / scale_(idx[j * block_]);
+      for (Eigen::Index i = 0; i < M; ++i) b(j, i) = x(j * block_ + 1 + i) / scale_(idx[j * block_ + 1 + i]);
+    }
+    a = mu.squaredNorm() > 0.0 ? Eigen::VectorXd((b.transpose() * mu / mu.squaredNorm()).cwiseMax(0.0))
+                               : Eigen::VectorXd::Zero(M);
+    return std::isfinite(cost) ? cost : std::numeric_limits<double>::infinity();
+  }
+
+ private:
+  Eigen::Index block_;
+  Eigen::VectorXd scale_, rhs_;
+  Eigen::MatrixXd gram_;
+  double yy_ = 0.0;
+};
+
+/// A start of the joint polish: x = [mu_j / mu_scale, alpha_j, a_i] and its cost on the screen rows.
+struct Candidate {
+  std::vector<double> x;
+  double cost;
+  bool non_negative;  ///< mu_j >= 0 kept in the polish
+};
+
+/// Rows of the residual vector the screen uses: about 100 samples of each quasi-static test, every dynamic row.
+std::vector<std::size_t> screen_rows(const Targets& g) {
+  std::vector<std::size_t> rows;
+  std::size_t o = 0;
+  for (const QuasiStaticResiduals& q : g.quasi_static) {
+    const std::size_t stride = std::max<std::size_t>(1, q.samples.size() / 100);
+    for (std::size_t k = 0; k < q.samples.size(); ++k)
+      if (k % stride == 0 || k + 1 == q.samples.size()) rows.push_back(o + k);
+    o += q.samples.size();
+  }
+  for (; o < g.residuals(); ++o) rows.push_back(o);
+  return rows;
+}
+
+/// Step 1: every N-subset of the exponent grid (and the start's exponents) through the relaxed screen; the best
+/// `relaxed_kept` subsets solved by alternating least squares (from the screen's ratios and from the start's),
+/// each twice: mu free, and mu_i >= 0 (with nu >= 0 sufficient for Drucker stability, so that a stable candidate
+/// exists whenever the free optimum is unstable). Candidates sorted by cost, free and non-negative apart.
+void screen_exponents(const Targets& g, const ViscoHyperfoam& start, const RefitOptions& options, int& starts,
+                      std::vector<Candidate>& free_candidates, std::vector<Candidate>& nn_candidates) {
+  const std::size_t N = g.N, M = g.M;
+  std::vector<double> grid = options.alpha_grid.empty() ? alpha_grid(int(N), 50.0) : options.alpha_grid;
+  std::vector<std::size_t> start_combo;
+  for (const auto& t : start.terms) {
+    start_combo.push_back(grid.size());
+    grid.push_back(std::clamp(std::abs(t.alpha), 0.2, 50.0) * (t.alpha < 0 ? -1.0 : 1.0));
+  }
+  std::vector<std::vector<std::size_t>> combos;
+  for (const auto& c : subsets(int(grid.size() - N), int(N))) combos.emplace_back(c.begin(), c.end());
+  combos.push_back(start_combo);
+  const std::vector<std::size_t> rows = screen_rows(g);
+  std::vector<TermBasis> basis;
+  for (double alpha : grid) basis.push_back(term_basis(g, alpha, rows));
+  const Eigen::VectorXd y = target_vector(g, rows);
+  const RelaxedScreen relaxed(basis, y);
+  struct Screened {
+    double cost;
+    std::size_t combo;
+    Eigen::VectorXd a;
   };
-  choose(0, 0);
+  std::vector<Screened> screened;
+  for (std::size_t k = 0; k < combos.size(); ++k) {
+    Eigen::VectorXd mu, a;
+    const double cost = relaxed.solve(combos[k], mu, a);
+    screened.push_back({cost, k, a});
+  }
+  const std::size_t kept = std::min(screened.size(), std::size_t(std::max(1, options.relaxed_kept)));
+  std::partial_sort(screened.begin(), screened.begin() + std::ptrdiff_t(kept), screened.end(),
+                    [](const Screened& a, const Screened& b) { return a.cost < b.cost; });
+  screened.resize(kept);
+  screened.push_back({0.0, combos.size() - 1, {}});  // the start's exponents always
+  const std::vector<double> a_start = long_term_ratios(start.prony);
+  Eigen::VectorXd a0(M);
+  for (std::size_t i = 0; i < M; ++i) a0(i) = std::max(0.0, a_start[i]);
+  for (const Screened& sc : screened) {
+    std::vector<const TermBasis*> terms;
+    for (std::size_t k : combos[sc.combo]) terms.push_back(&basis[k]);
+    for (const bool nn : {false, true}) {
+      InnerSolution s = alternating(terms, y, a0, options.alternating_iterations, nn);
+      if (sc.a.size() == Eigen::Index(M)) {
+        const InnerSolution t = alternating(terms, y, sc.a, options.alternating_iterations, nn);
+        if (t.cost < s.cost) s = t;
+      }
+      ++starts;
+      if (!std::isfinite(s.cost) || !s.mu.allFinite() || (nn && !(s.mu.maxCoeff() > 0.0))) continue;
+      std::vector<double> x;
+      for (std::size_t j = 0; j < N; ++j) x.push_back(s.mu(j) / g.mu_scale);
+      for (std::size_t k : combos[sc.combo]) x.push_back(grid[k]);
+      for (std::size_t i = 0; i < M; ++i) x.push_back(s.a(i));
+      (nn ? nn_candidates : free_candidates).push_back({x, s.cost, nn});
+    }
+  }
+  for (auto* list : {&free_candidates, &nn_candidates})
+    std::stable_sort(list->begin(), list->end(), [](const Candidate& a, const Candidate& b) { return a.cost < b.cost; });
+}
+
+/// The polish starts: the best candidate of each kind (mu free, mu >= 0) and each sign pattern of the exponents
+/// (the number of negative alpha_j; the polish keeps every sign, so each pattern is its own basin) whose cost is
+/// within `start_cost_ratio` of the best, the lowest costs first, at most `count`.
+std::vector<Candidate> diverse_starts(const std::vector<Candidate>& free_candidates,
+                                      const std::vector<Candidate>& nn_candidates, std::size_t N, int count,
+                                      double start_cost_ratio) {
+  std::vector<Candidate> out;
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto* list : {&free_candidates, &nn_candidates})
+    if (!list->empty()) best = std::min(best, list->front().cost);
+  for (const auto* list : {&free_candidates, &nn_candidates}) {
+    std::vector<bool> taken(N + 1, false);
+    for (const Candidate& c : *list) {  // sorted by cost
+      std::size_t negative = 0;
+      for (std::size_t j = 0; j < N; ++j) negative += c.x[N + j] < 0.0 ? 1 : 0;
+      if (taken[negative] || !(c.cost <= start_cost_ratio * best)) continue;
+      taken[negative] = true;
+      const bool repeated = std::any_of(out.begin(), out.end(), [&](const Candidate& o) { return o.x == c.x; });
+      if (!repeated) out.push_back(c);  // a non-negative solution that is also the free one
+    }
+  }
+  std::stable_sort(out.begin(), out.end(), [](const Candidate& a, const Candidate& b) { return a.cost < b.cost; });
+  if (out.size() > std::size_t(std::max(1, count))) out.resize(std::size_t(std::max(1, count)));
+  return out;
+}
+
+/// One joint polish of a start (automatic derivatives, Ceres bounded trust region).
+struct PolishOutcome {
+  std::vector<double> x;
+  double cost = 0.0;
+  bool usable = false;
+  std::string report;
+  int iterations = 0, evaluations = 0;
+};
+
+/// Polishes `start` within the bounds: alpha_j keeps its sign with 0.2 <= |alpha_j| <= 50, |mu_j| <= mu_bound (mu_j >= 0
+/// for a non-negative start), 0 <= a_i <= 1e3. Ceres projects its steps onto the bounds, which stalls (parameter
+/// tolerance after many rejected steps) while a bound is active, typically a_i = 0 for a decade without relaxation:
+/// a second solve then holds the parameters at a bound constant and polishes the rest; it is kept if lower.
+PolishOutcome polish_start(const Targets& g, const Candidate& start, const RefitOptions& options,
+                           const ceres::Solver::Options& so) {
+  const std::size_t N = g.N, n = g.parameters();
+  std::vector<double> lower(n), upper(n);
+  for (std::size_t j = 0; j < N; ++j) {
+    const bool negative = start.x[N + j] < 0.0;
+    lower[N + j] = negative ? -50.0 : 0.2;
+    upper[N + j] = negative ? -0.2 : 50.0;
+    lower[j] = start.non_negative ? 0.0 : -options.mu_bound;
+    upper[j] = options.mu_bound;
+  }
+  for (std::size_t i = 2 * N; i < n; ++i) lower[i] = 0.0, upper[i] = 1e3;
+  PolishOutcome out;
+  out.x = start.x;
+  for (std::size_t i = 0; i < n; ++i) out.x[i] = std::clamp(out.x[i], lower[i], upper[i]);
+  auto solve = [&](std::vector<double>& x, const std::vector<int>& held) {
+    auto* cost = new ceres::DynamicAutoDiffCostFunction<JointResidual, 12>(new JointResidual{&g});
+    cost->AddParameterBlock(static_cast<int>(n));
+    cost->SetNumResiduals(static_cast<int>(g.residuals()));
+    ceres::Problem problem;
+    problem.AddResidualBlock(cost, nullptr, x.data());
+    auto* bound =
+        new ceres::DynamicAutoDiffCostFunction<RatioSumBound, 12>(new RatioSumBound{2 * N, g.M, options.a_sum_max, 10.0});
+    bound->AddParameterBlock(static_cast<int>(n));
+    bound->SetNumResiduals(1);
+    problem.AddResidualBlock(bound, nullptr, x.data());
+    for (std::size_t i = 0; i < n; ++i) {
+      problem.SetParameterLowerBound(x.data(), int(i), lower[i]);
+      problem.SetParameterUpperBound(x.data(), int(i), upper[i]);
+    }
+    if (!held.empty()) problem.SetManifold(x.data(), new ceres::SubsetManifold(int(n), held));
+    ceres::Solver::Summary summary;
+    ceres::Solve(so, &problem, &summary);
+    out.iterations += static_cast<int>(summary.iterations.size());
+    out.evaluations += summary.num_residual_evaluations + summary.num_jacobian_evaluations;
+    return summary;
+  };
+  const ceres::Solver::Summary first = solve(out.x, {});
+  out.cost = first.final_cost;
+  out.usable = first.IsSolutionUsable();
+  out.report = first.BriefReport();
+  std::vector<int> held;
+  for (std::size_t i = 0; i < n; ++i)
+    if (lower[i] == 0.0 && out.x[i] <= 0.0) held.push_back(int(i));
+  if (!out.usable || held.empty() || held.size() == n) return out;
+  std::vector<double> x = out.x;
+  const ceres::Solver::Summary second = solve(x, held);
+  if (second.IsSolutionUsable() && second.final_cost < out.cost) {
+    out.x = x;
+    out.cost = second.final_cost;
+    out.report = first.BriefReport() + "; with the " + std::to_string(held.size()) + " parameter(s) at a bound held: " +
+                 second.BriefReport();
+  }
   return out;
 }
 
@@ -260,7 +491,7 @@ RefitResult refit(const ViscoHyperfoam& start, const Specimen& specimen, const s
   if (quasi_static.empty()) throw std::invalid_argument("refit: no quasi-static test");
   if (start.terms.empty()) throw std::invalid_argument("refit: no hyperfoam term");
   const Targets g = make_targets(start, specimen, quasi_static, dynamic, options);
-  const std::size_t N = g.N, M = g.M, n = g.parameters(), R = g.residuals();
+  const std::size_t N = g.N, R = g.residuals();
   double peak_strain = 0.0;
   for (const QuasiStaticTarget& t : quasi_static) peak_strain = std::max(peak_strain, t.segments.peak_strain);
 
@@ -277,60 +508,10 @@ RefitResult refit(const ViscoHyperfoam& start, const Specimen& specimen, const s
   };
   result.cost_start = evaluate(pack(g, start), result.quasi_static_rms_start, result.dynamic_rms_start);
 
-  // 1. Global search over the exponents: alternating linear least squares on a subsample of the rows.
-  std::vector<std::size_t> screen_rows;
-  {
-    std::size_t o = 0;
-    for (const QuasiStaticResiduals& q : g.quasi_static) {
-      const std::size_t stride = std::max<std::size_t>(1, q.samples.size() / 100);
-      for (std::size_t k = 0; k < q.samples.size(); ++k)
-        if (k % stride == 0 || k + 1 == q.samples.size()) screen_rows.push_back(o + k);
-      o += q.samples.size();
-    }
-    for (; o < R; ++o) screen_rows.push_back(o);
-  }
-  std::vector<double> grid = options.alpha_grid;
-  std::vector<std::vector<std::size_t>> combos;
-  std::vector<std::size_t> start_combo;
-  for (const auto& t : start.terms) {
-    start_combo.push_back(grid.size());
-    grid.push_back(std::clamp(std::abs(t.alpha), 0.2, 50.0) * (t.alpha < 0 ? -1.0 : 1.0));
-  }
-  combos = subsets(options.alpha_grid.size(), N);
-  combos.push_back(start_combo);
-  std::vector<TermBasis> basis;
-  for (double alpha : grid) basis.push_back(term_basis(g, alpha, screen_rows));
-  const Eigen::VectorXd y_screen = target_vector(g, screen_rows);
-  const std::vector<double> a_start = long_term_ratios(start.prony);
-  Eigen::VectorXd a0(M);
-  for (std::size_t i = 0; i < M; ++i) a0(i) = std::max(0.0, a_start[i]);
-  // Each subset twice: mu free, and mu_i >= 0 (with nu >= 0 sufficient for Drucker stability, so that a
-  // stable candidate exists whenever the free optimum is unstable).
-  struct Candidate {
-    std::vector<double> x;
-    double cost;
-    bool non_negative;
-  };
+  // 1. Global search over the exponents (screen_exponents).
   std::vector<Candidate> free_candidates, nn_candidates;
-  for (const auto& combo : combos) {
-    std::vector<const TermBasis*> terms;
-    for (std::size_t k : combo) terms.push_back(&basis[k]);
-    for (const bool nn : {false, true}) {
-      const InnerSolution s = alternating(terms, y_screen, a0, options.alternating_iterations, nn);
-      ++result.starts;
-      if (!std::isfinite(s.cost) || !s.mu.allFinite() || (nn && !(s.mu.maxCoeff() > 0.0))) continue;
-      std::vector<double> x;
-      for (std::size_t j = 0; j < N; ++j) x.push_back(s.mu(j) / g.mu_scale);
-      for (std::size_t k : combo) x.push_back(grid[k]);
-      for (std::size_t i = 0; i < M; ++i) x.push_back(s.a(i));
-      (nn ? nn_candidates : free_candidates).push_back({x, s.cost, nn});
-    }
-  }
-  const std::size_t polished_starts = std::size_t(std::max(1, options.polished_starts));
-  for (auto* list : {&free_candidates, &nn_candidates}) {
-    std::stable_sort(list->begin(), list->end(), [](const Candidate& a, const Candidate& b) { return a.cost < b.cost; });
-    if (list->size() > polished_starts) list->resize(polished_starts);
-  }
+  screen_exponents(g, start, options, result.starts, free_candidates, nn_candidates);
+  const std::vector<Candidate> starts = diverse_starts(free_candidates, nn_candidates, N, options.polished_starts, options.start_cost_ratio);
 
   // 2. Joint polish of the best starts (automatic derivatives), 3. the best stable one.
   // Dogleg: LM crawled along the (mu, a) valley (5x more iterations).
@@ -353,41 +534,25 @@ RefitResult refit(const ViscoHyperfoam& start, const Specimen& specimen, const s
       return false;
     }
   };
-  // Each polish is independent and deterministic: two at a time, each on its own thread. First the best
-  // free-mu starts; if none of them ends Drucker-stable, the best mu >= 0 starts (bounded polish).
+  // Each polish is independent and deterministic: two workers on two threads. First the diverse starts;
+  // if none of them ends Drucker-stable, the best mu >= 0 starts (bounded polish).
   std::vector<Polished> polished;
   auto polish_all = [&](const std::vector<Candidate>& candidates) {
     std::vector<Polished> out(candidates.size());
     std::vector<int> iterations(candidates.size(), 0), evaluations(candidates.size(), 0);
     auto polish = [&](std::size_t k) {
-      std::vector<double> x = candidates[k].x;
-      auto* cost = new ceres::DynamicAutoDiffCostFunction<JointResidual, 12>(new JointResidual{&g});
-      cost->AddParameterBlock(static_cast<int>(n));
-      cost->SetNumResiduals(static_cast<int>(R));
-      ceres::Problem problem;
-      problem.AddResidualBlock(cost, nullptr, x.data());
-      for (std::size_t j = 0; j < N; ++j) {
-        const bool negative = x[N + j] < 0.0;
-        problem.SetParameterLowerBound(x.data(), int(N + j), negative ? -50.0 : 0.2);
-        problem.SetParameterUpperBound(x.data(), int(N + j), negative ? -0.2 : 50.0);
-        if (candidates[k].non_negative) problem.SetParameterLowerBound(x.data(), int(j), 0.0);
-      }
-      for (std::size_t i = 2 * N; i < n; ++i) {
-        problem.SetParameterLowerBound(x.data(), int(i), 0.0);
-        problem.SetParameterUpperBound(x.data(), int(i), 1e3);
-      }
-      ceres::Solver::Summary summary;
-      ceres::Solve(so, &problem, &summary);
-      iterations[k] = static_cast<int>(summary.iterations.size());
-      evaluations[k] = summary.num_residual_evaluations + summary.num_jacobian_evaluations;
-      out[k] = Polished{x, summary.final_cost, summary.IsSolutionUsable(), is_stable(x), summary.BriefReport()};
+      const PolishOutcome p = polish_start(g, candidates[k], options, so);
+      iterations[k] = p.iterations;
+      evaluations[k] = p.evaluations;
+      out[k] = Polished{p.x, p.cost, p.usable, is_stable(p.x), p.report};
     };
-    for (std::size_t k = 0; k < candidates.size(); k += 2) {
-      std::thread second;
-      if (k + 1 < candidates.size()) second = std::thread(polish, k + 1);
-      polish(k);
-      if (second.joinable()) second.join();
-    }
+    std::atomic<std::size_t> next{0};
+    auto worker = [&] {
+      for (std::size_t k = next++; k < candidates.size(); k = next++) polish(k);
+    };
+    std::thread second(worker);  // two workers take the next start as they finish one
+    worker();
+    second.join();
     for (std::size_t k = 0; k < candidates.size(); ++k) {
       result.iterations += iterations[k];
       result.evaluations += evaluations[k];
@@ -399,8 +564,11 @@ RefitResult refit(const ViscoHyperfoam& start, const Specimen& specimen, const s
       if (p.usable && p.stable) return true;
     return false;
   };
-  polish_all(free_candidates);
-  if (!any_stable()) polish_all(nn_candidates);
+  polish_all(starts);
+  if (!any_stable()) {  // the next mu >= 0 starts (Drucker-stable with nu >= 0)
+    nn_candidates.resize(std::min(nn_candidates.size(), std::size_t(std::max(1, options.polished_starts))));
+    polish_all(nn_candidates);
+  }
   std::stable_sort(polished.begin(), polished.end(), [](const Polished& a, const Polished& b) {
     if (a.usable != b.usable) return a.usable;
     if (a.stable != b.stable) return a.stable;

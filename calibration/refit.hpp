@@ -13,14 +13,21 @@
 ///     amplitude (uniaxial_dynamic_moduli, same fast model), residuals (E'_model/E' - 1, E''_model/E'' - 1) / sqrt(2 F) at the F frequencies.
 /// Cost = (RMS_qs^2 + RMS_dyn^2)/2. The model is linear in mu for fixed (alpha, a) and linear in a for fixed
 /// (alpha, mu), so the search is:
-///   1. global: for every N-subset of `alpha_grid` (and the start's alphas) the inner problem in (mu, a >= 0)
-///      is solved by alternating linear least squares (non-negative for a), from the start's a;
-///   2. polish: the best `polished_starts` of them, all parameters jointly, Ceres bounded trust region
-///      (dogleg) with automatic derivatives (ceres::Jet), bounds a_i >= 0, alpha_i keeps its
-///      sign with 0.2 <= |alpha_i| <= 50;
-///   Each subset is solved twice: mu free and mu_i >= 0 (NNLS; with nu >= 0 sufficient for Drucker stability);
-///   3. the lowest-cost polished result whose hyperfoam is Drucker-stable over the tested range is returned;
-///      the free-mu starts are polished first, the mu >= 0 ones (bounded polish) when none of those ends stable.
+///   1. global, on about 100 samples per quasi-static test and every dynamic row: for every N-subset of the exponent
+///      grid (both signs, exponent_grid.hpp; and the start's exponents) a RELAXED linear least-squares problem in
+///      (mu_j, b_ji = mu_j a_i), the rank-one structure b = mu a^T dropped: a lower bound of the subset's cost, zero
+///      at the true exponents of noise-free data, one small dense solve per subset on the Gram matrix of the grid
+///      columns; the best `relaxed_kept` subsets then solved for (mu, a >= 0) by alternating linear least squares
+///      (from the relaxed ratios and from the start's), each twice: mu free and mu_i >= 0 (NNLS; with nu >= 0
+///      sufficient for Drucker stability);
+///   2. multi-start polish, all parameters jointly, Ceres bounded trust region (dogleg) with automatic derivatives
+///      (ceres::Jet), bounds a_i >= 0, sum a_i <= a_sum_max (penalty), |mu_i| <= mu_bound peak stresses, alpha_i keeps its sign with
+///      0.2 <= |alpha_i| <= 50: the best start of each kind (mu free, mu >= 0) and each sign pattern of the exponents
+///      (a polish cannot change a sign, so each pattern is its own basin) within start_cost_ratio of the best, at
+///      most polished_starts, on two threads; a parameter left at a bound is then held and the rest
+///      polished again (Ceres' projected steps stall while a bound is active, typically a_i = 0);
+///   3. the lowest-cost polished result whose hyperfoam is Drucker-stable over the tested range is returned (if
+///      none is, the next mu >= 0 starts are polished).
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,10 +37,17 @@
 namespace cushion::calibration {
 
 struct RefitOptions {
-  std::vector<double> alpha_grid = {-4.0, -2.0, -1.0, 1.0, 2.0, 3.0, 5.0, 8.0, 12.0, 20.0, 30.0};  ///< start exponents
+  std::vector<double> alpha_grid;   ///< start exponents; empty: alpha_grid(N, 50) of exponent_grid.hpp (both signs)
+  int relaxed_kept = 32;            ///< best subsets of the relaxed screen solved by alternating least squares
   int alternating_iterations = 8;   ///< inner (mu, a) sweeps per grid start
-  int polished_starts = 2;          ///< best grid starts polished jointly (two at a time on two threads)
+  int polished_starts = 8;          ///< starts polished jointly (on two threads): the best of each kind
+                                    ///< (mu free, mu >= 0) and sign pattern of the exponents, lowest cost first
+  double start_cost_ratio = 100.0;  ///< polish starts: screen cost at most this times the best start's
   int max_iterations = 200;         ///< Ceres iterations per polish
+  double a_sum_max = 9.0;           ///< polish bound sum a_i <= this (penalty): long-term modulus >= 10 % of the
+                                    ///< instantaneous one (no vanishing long-term curve when one rate cannot separate them)
+  double mu_bound = 100.0;          ///< polish bound |mu_i| <= this times the peak stress: no cancelling pair of huge
+                                    ///< moduli (an ill-conditioned material on which the solver's Newton fails)
   double function_tolerance = 1e-14, gradient_tolerance = 1e-16, parameter_tolerance = 1e-12;
   double stability_tension = 0.5;   ///< required Drucker-stable nominal strain range [-peak, this]
   std::optional<DynamicSchedule> schedule;  ///< dynamic test timing (empty: about a relaxed preload)

@@ -3,10 +3,10 @@
 // rates, dynamic 1..20 Hz about a 25 % preload), read back as a campaign and fitted by fit_pipeline with
 // the default options; the outputs are written (write_fit_outputs, no plots drawn).
 //
-// Two parts, kept apart on purpose:
-//   1. ROBUSTNESS, hard requirements, run by ctest (FitRandomFoams.NoFailureOnFortyFoams, seeds 1..40). Each of
-//      them failed on some random foam before the fit-robust branch (the fit threw, or handed out an unstable
-//      material, or wrote NaN, or gave no reason, or threw in the final comparison: seed 31):
+// Two parts:
+//   1. ROBUSTNESS, hard requirements. Each of them failed on some random foam before the fit-robust branch (the fit
+//      threw, or handed out an unstable material, or wrote NaN, or gave no reason, or threw in the final comparison:
+//      seed 31):
 //        - the fit completes (no exception) and writes material.json, report.json, report.md;
 //        - the default material is accepted by the material reader and Drucker-stable over [-peak strain, 0.5];
 //        - no NaN/inf in the log nor anywhere in report.json; a failed prediction is "n/a (reason)", never a bare NaN;
@@ -17,13 +17,15 @@
 //          sqrt((RMS_qs^2 + E_dyn^2)/2), RMS_qs over the quasi-static calibration tests, E_dyn the |E*| error on the
 //          dynamic one) is at most best_margin_relative above the better candidate's (the refit chooses by its own
 //          joint cost in E', E'' with the fast uniaxial model, hence a margin rather than equality).
-//   2. ACCURACY, a measurement until the refit's local minima are dealt with (NOT run by ctest, DISABLED_):
+//   2. ACCURACY (issue 15):
 //        - the default's long-term curve within 1 % of the truth's peak stress over [0, peak strain];
 //        - its |E*| about the preload (the solver's model along the test schedule) within 2 % at every frequency.
-//      It prints the count of foams within tolerance and the worst figures:
-//        build/tests/test_calibration --gtest_also_run_disabled_tests --gtest_filter='FitRandomFoams.DISABLED_*'
-//      (it also checks part 1 on every foam).
-// CUSHION_RANDOM_FOAMS="first,count" picks other seeds for either test.
+// ctest runs both parts on seeds 1..40 (FitRandomFoams.NoFailureAndWithinToleranceOnFortyFoams) and on five former
+// refit misses; the 200-foam acceptance run (about 5 minutes) is DISABLED_:
+//   build/tests/test_calibration --gtest_also_run_disabled_tests --gtest_filter='FitRandomFoams.DISABLED_*'
+// Each prints one line per foam (for a foam off tolerance also the truth, the paper's and the refit's materials with
+// their errors), the count within tolerance and the worst figures. CUSHION_RANDOM_FOAMS="first,count" or
+// CUSHION_RANDOM_FOAM_SEEDS="3 15 18" picks other seeds for any of them; CUSHION_RANDOM_FOAMS_LOG=1 prints the fit log.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -32,6 +34,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <iterator>
 #include <regex>
 #include <sstream>
 #include <unistd.h>
@@ -66,6 +69,7 @@ struct Outcome {
   double lab_seconds = 0.0, fit_seconds = 0.0;
   std::string log;
   std::string na;                            ///< predictions reported n/a (test: material: reason)
+  std::string detail;                        ///< for a foam off tolerance: the fitted materials and their errors
 };
 
 double curve_error(const cal::ViscoHyperfoam& truth, const cal::ViscoHyperfoam& m, double peak_strain) {
@@ -99,6 +103,37 @@ double modulus_error(const cal::DynamicPrediction& p) {
     err = std::isfinite(e) ? std::max(err, e) : INFINITY;
   }
   return err;
+}
+
+std::string terms_text(const cal::ViscoHyperfoam& m) {
+  std::ostringstream o;
+  o.precision(4);
+  for (const auto& t : m.terms) o << " (mu " << t.mu * 1e3 << " kPa, alpha " << t.alpha << ")";
+  o << "; g";
+  for (const auto& p : m.prony) o << " " << p.g << "@" << p.tau << "s";
+  return o.str();
+}
+
+/// For a foam off tolerance: the truth, the paper's and the refit's materials with their curve and |E*| errors.
+std::string miss_detail(const rf::RandomFoam& foam, const cal::FitResult& R) {
+  std::ostringstream o;
+  o.precision(4);
+  const double ep = R.segments.peak_strain;
+  o << "    truth:" << terms_text(foam.material) << "\n    paper:" << terms_text(R.paper_material) << "  curve "
+    << 100.0 * curve_error(foam.material, R.paper_material, ep) << " % (hyperfoam fit RMS " << 100.0 * R.hyperfoam.rms_error
+    << " % of the elastic curve)";
+  for (const auto& c : R.comparisons)
+    if (c.kind == "dynamic" && c.name == R.dynamic_name && c.dynamic_paper) o << "  |E*| " << 100.0 * modulus_error(*c.dynamic_paper) << " %";
+  if (R.refit) {
+    o << "\n    refit:" << terms_text(R.refit->material) << "  curve " << 100.0 * curve_error(foam.material, R.refit->material, ep) << " %";
+    for (const auto& c : R.comparisons)
+      if (c.kind == "dynamic" && c.name == R.dynamic_name && c.dynamic_refit) o << "  |E*| " << 100.0 * modulus_error(*c.dynamic_refit) << " %";
+    o << "  cost " << R.refit->cost_start << " -> " << R.refit->cost << " (qs " << 100.0 * R.refit->quasi_static_rms
+      << " %, dyn " << 100.0 * R.refit->dynamic_rms << " %)" << (R.refit->accepted() ? "" : "  rejected: " + R.refit->rejection);
+  }
+  o << "\n    decomposition branch mismatch " << 100.0 * R.decomposition.branch_mismatch << " %, hereditary RMSE "
+    << 100.0 * R.hereditary.rmse_relative << " %, Prony chi2 " << R.prony.chi2 << "\n";
+  return o.str();
 }
 
 Outcome round_trip(unsigned long long seed) {
@@ -189,6 +224,7 @@ Outcome round_trip(unsigned long long seed) {
       }
     if (!(o.curve_error < curve_tolerance)) o.inaccuracy += "long-term curve off; ";
     if (!(o.modulus_error < modulus_tolerance)) o.inaccuracy += "|E*| off; ";
+    if (!o.inaccuracy.empty()) o.detail = miss_detail(foam, R);
   } catch (const std::exception& e) {
     o.failure = std::string("lab failed: ") + e.what();
   }
@@ -196,20 +232,30 @@ Outcome round_trip(unsigned long long seed) {
   return o;
 }
 
-/// Runs seeds [first, first + count), one line per foam, a summary. Expects part 1 on every foam; with
-/// `accuracy`, also part 2 (the long-term curve and |E*| within tolerance).
-void run_foams(unsigned long long first, int count, bool accuracy) {
+/// Runs `seeds`, one line per foam, a summary. Expects part 1 on every foam; with `accuracy`, also part 2 (the
+/// long-term curve and |E*| within tolerance). CUSHION_RANDOM_FOAMS="first,count" (a range) or
+/// CUSHION_RANDOM_FOAM_SEEDS="3 15 18" (a list) picks other seeds.
+void run_foams(std::vector<unsigned long long> seeds, bool accuracy) {
   if (const char* env = std::getenv("CUSHION_RANDOM_FOAMS")) {
     std::istringstream in(env);
+    unsigned long long first = 1;
+    int count = 0;
     char comma = 0;
     in >> first >> comma >> count;
+    seeds.clear();
+    for (int k = 0; k < count; ++k) seeds.push_back(first + k);
   }
+  if (const char* env = std::getenv("CUSHION_RANDOM_FOAM_SEEDS")) {
+    std::istringstream in(env);
+    seeds.assign(std::istream_iterator<unsigned long long>(in), std::istream_iterator<unsigned long long>());
+  }
+  const int count = int(seeds.size());
   int failures = 0, accurate = 0, curve_ok = 0, modulus_ok = 0, refit_default = 0;
   double worst_curve = 0.0, worst_modulus = 0.0, worst_joint_ratio = 0.0, fit_seconds = 0.0, lab_seconds = 0.0, slowest = 0.0;
   unsigned long long worst_curve_seed = 0, worst_modulus_seed = 0;
   const auto start = std::chrono::steady_clock::now();
-  for (int k = 0; k < count; ++k) {
-    const Outcome o = round_trip(first + k);
+  for (unsigned long long seed : seeds) {
+    const Outcome o = round_trip(seed);
     const bool ok = o.failure.empty();
     failures += ok ? 0 : 1;
     accurate += o.inaccuracy.empty() ? 1 : 0;
@@ -230,11 +276,15 @@ void run_foams(unsigned long long first, int count, bool accuracy) {
               << std::setprecision(2) << o.lab_seconds << " s  fit " << o.fit_seconds << " s"
               << (o.na.empty() ? "" : "  n/a: " + o.na) << (o.inaccuracy.empty() ? "" : "  inaccurate: " + o.inaccuracy)
               << (ok ? "" : "  FAILED: " + o.failure) << std::defaultfloat << "\n";
+    if (!o.detail.empty()) std::cout << "    " << rf::make_random_foam(o.seed).describe() << "\n" << o.detail;
+    if (std::getenv("CUSHION_RANDOM_FOAMS_LOG")) std::cout << o.log;
     EXPECT_TRUE(ok) << rf::make_random_foam(o.seed).describe() << "\n" << o.failure << "\n" << o.log;
-    if (accuracy) EXPECT_TRUE(o.inaccuracy.empty()) << rf::make_random_foam(o.seed).describe() << "\n" << o.inaccuracy;
+    if (accuracy) {
+      EXPECT_TRUE(o.inaccuracy.empty()) << rf::make_random_foam(o.seed).describe() << "\n" << o.inaccuracy;
+    }
   }
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::cout << std::setprecision(4) << "random foams: " << count << " (seeds " << first << ".." << first + count - 1
+  std::cout << std::setprecision(4) << "random foams: " << count << " (seeds " << seeds.front() << ".." << seeds.back()
             << "), robustness failures " << failures << "; within tolerance (curve < " << 100.0 * curve_tolerance
             << " % of peak and |E*| < " << 100.0 * modulus_tolerance << " %): " << accurate << "/" << count << " (curve "
             << curve_ok << ", |E*| " << modulus_ok << "); worst long-term curve error " << 100.0 * worst_curve
@@ -265,8 +315,21 @@ TEST(RandomFoam, DrawsArePlausibleStableAndRepeatable) {
   }
 }
 
-// Part 1 (robustness) on seeds 1..40, run by ctest.
-TEST(FitRandomFoams, NoFailureOnFortyFoams) { run_foams(1, 40, false); }
+std::vector<unsigned long long> seed_range(unsigned long long first, int count) {
+  std::vector<unsigned long long> seeds;
+  for (int k = 0; k < count; ++k) seeds.push_back(first + k);
+  return seeds;
+}
 
-// Part 2 (accuracy acceptance) on seeds 1..200: a measurement until the refit's local minima are dealt with.
-TEST(FitRandomFoams, DISABLED_TwoHundredNoiseFreeFoamsRoundTrip) { run_foams(1, 200, true); }
+// Parts 1 and 2 on seeds 1..40, run by ctest.
+TEST(FitRandomFoams, NoFailureAndWithinToleranceOnFortyFoams) { run_foams(seed_range(1, 40), true); }
+
+// Parts 1 and 2 on foams beyond seed 40 that the refit missed before its relaxed global screen, diverse multi-start
+// polish and bound handling (curve 2-82 % of peak off): 70 (4 terms, 3 negative exponents), 139 (all exponents
+// positive, relaxation only at 10 and 100 s: a_i = 0 at the bound stalled the polish), 158 (the better starts had
+// the wrong sign pattern), 188 (two equal exponents with cancelling moduli), 195 (tiny densification terms).
+TEST(FitRandomFoams, FormerRefitMissesWithinTolerance) { run_foams({70, 139, 158, 188, 195}, true); }
+
+// Part 2 (accuracy acceptance) on seeds 1..200: 199/200 (seed 117, a 4-term foam fitted with the default 3 terms,
+// curve 1.03 % of peak); about 5 minutes, so not run by ctest.
+TEST(FitRandomFoams, DISABLED_TwoHundredNoiseFreeFoamsRoundTrip) { run_foams(seed_range(1, 200), true); }
