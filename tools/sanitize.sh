@@ -2,7 +2,7 @@
 # Runs the test suite under AddressSanitizer + UndefinedBehaviorSanitizer (gcc) in ./build-asan.
 #
 #   tools/sanitize.sh            the whole suite (every ctest; about an hour on 2 quiet cores, see README)
-#   tools/sanitize.sh --readers  the named subset CI runs: the io, mesh and material libraries and their tests
+#   tools/sanitize.sh --readers  a named subset (not run by CI): the io, mesh and material libraries and their tests
 #                                (every file reader, the fuzz-found regressions, the material laws; a few minutes)
 #   extra arguments go to ctest (e.g. -R Inp, -L solver)
 #
