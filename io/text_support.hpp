@@ -1,6 +1,7 @@
 #pragma once
 /// Small text helpers shared by the file readers and writers of cushion (CSV, material, protocol).
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,12 @@ void write_file_atomically(const std::filesystem::path& file, const std::string&
 
 /// The items separated by `separator`.
 std::string join(const std::vector<std::string>& items, const std::string& separator);
+
+/// s in upper case (ASCII).
+std::string upper_case(std::string s);
+
+/// The value of `text` when the WHOLE text is one finite number (std::stod syntax), else nullopt.
+std::optional<double> parse_finite_number(const std::string& text);
 
 /// Shortest decimal text that reads back to exactly `x` (std::to_chars round trip).
 std::string format_double(double x);

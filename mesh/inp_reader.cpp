@@ -16,11 +16,7 @@
 namespace cushion::mesh {
 namespace {
 
-std::string upper(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
-  return s;
-}
+std::string upper(std::string s) { return io::upper_case(std::move(s)); }
 
 using Line = InpLine;
 using Block = InpBlock;
@@ -166,16 +162,9 @@ class Reader {
     return static_cast<int>(value);
   }
   static double real(const Line& line, const std::string& keyword, const std::string& text) {
-    std::size_t used = 0;
-    double value = 0;
-    try {
-      value = std::stod(text, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (text.empty() || used != text.size() || !std::isfinite(value))
-      fail(line, keyword, "bad number '" + text + "'");
-    return value;
+    const std::optional<double> value = io::parse_finite_number(text);
+    if (!value) fail(line, keyword, "bad number '" + text + "'");
+    return *value;
   }
   static std::string required(const Block& block, const std::string& option) {
     const auto it = block.options.find(option);

@@ -8,16 +8,14 @@
 #include <stdexcept>
 
 #include "io/input_error.hpp"
+#include "io/text_support.hpp"
 #include "mesh/shape.hpp"
 
 namespace cushion::mesh {
 
 namespace {
 
-std::string upper(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return s;
-}
+std::string upper(std::string s) { return io::upper_case(std::move(s)); }
 
 std::string join(const std::vector<std::string>& names) {
   std::string out;

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "io/input_error.hpp"
+#include "io/text_support.hpp"
 #include "mesh/text.hpp"
 
 namespace cushion::mesh {
@@ -18,15 +19,9 @@ struct Parser {
   }
   double number(const std::string& token) const {
     const std::string t = trim(token);
-    std::size_t used = 0;
-    double value = 0.0;
-    try {
-      value = std::stod(t, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (t.empty() || used != t.size() || !std::isfinite(value)) fail("bad number '" + t + "'");
-    return value;
+    const std::optional<double> value = io::parse_finite_number(t);
+    if (!value) fail("bad number '" + t + "'");
+    return *value;
   }
   // "name(a, b, ...)" with exactly `count` numbers.
   std::vector<double> arguments(const std::string& body, std::size_t count) const {

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "io/input_error.hpp"
+#include "io/text_support.hpp"
 #include "solver/deck/deck_parts.hpp"
 
 namespace cushion::solver {
@@ -42,21 +43,12 @@ std::string required_parameter(const Block& block, const std::string& key) {
   return *value;
 }
 
-std::string upper(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
-  return s;
-}
+std::string upper(std::string s) { return io::upper_case(std::move(s)); }
 
 double number(const Block& block, const Line& line, const std::string& field) {
-  std::size_t used = 0;
-  double value = 0.0;
-  try {
-    value = std::stod(field, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (field.empty() || used != field.size() || !std::isfinite(value)) fail(block, line, "bad number '" + field + "'");
-  return value;
+  const std::optional<double> value = io::parse_finite_number(field);
+  if (!value) fail(block, line, "bad number '" + field + "'");
+  return *value;
 }
 
 int integer(const Block& block, const Line& line, const std::string& field) {
