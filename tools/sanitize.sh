@@ -9,7 +9,7 @@
 # Build: RelWithDebInfo (-O2 -g) with -fsanitize=address,undefined -fno-sanitize-recover=undefined
 # -fno-omit-frame-pointer, for every library, test and the `cushion` program the CLI tests run. Sanitizer reports go
 # to build-asan/sanitizer-logs/ (log_path), so a report is found even where a test expects a non-zero exit of the
-# program it runs; any file there fails the run. ASan's leak check is on. Prints the time taken; exit 0 only when
+# program it runs; any file there with an ASan/LSan ERROR or a UBSan runtime error fails the run. ASan's leak check is on. Prints the time taken; exit 0 only when
 # every test passed and no report was written.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -47,12 +47,13 @@ if [ $subset -eq 0 ] && [ -n "$(ctest --test-dir "$BUILD" -N -L petsc "$@" | gre
 fi
 end=$(date +%s)
 
-reports=$(find "$LOGS" -type f | wc -l)
+# A log file that holds only LeakSanitizer's "Suppressions used" statistics (the PETSc tests) is not a report.
+reports=$({ grep -l -E "ERROR: |runtime error: " -r "$LOGS" || true; } | wc -l)
 echo "sanitize: build $((built - start)) s, tests $((end - built)) s on $(nproc) cores (load now: $(cut -d' ' -f1-3 /proc/loadavg))"
 if [ "$reports" -gt 0 ]; then
   echo "sanitize: $reports sanitizer report(s) in $LOGS:"
-  find "$LOGS" -type f | head -20
-  head -40 "$(find "$LOGS" -type f | head -1)"
+  grep -l -E "ERROR: |runtime error: " -r "$LOGS" | head -20
+  head -40 "$(grep -l -E "ERROR: |runtime error: " -r "$LOGS" | head -1)"
   exit 1
 fi
 [ $status -eq 0 ] && echo "sanitize: all tests passed, no sanitizer report" || echo "sanitize: ctest failed ($status)"
