@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs the test suite under AddressSanitizer + UndefinedBehaviorSanitizer (gcc) in ./build-asan.
 #
-#   tools/sanitize.sh            the whole suite (every ctest; about an hour on 2 quiet cores, see README)
+#   tools/sanitize.sh            the whole suite (every ctest; measured 2026-11-24: build 14 min, tests 2.3 h on 2 cores
+#                                shared part of the time; the diagnose and fit tests dominate under ASan)
 #   tools/sanitize.sh --readers  a named subset (not run by CI): the io, mesh and material libraries and their tests
 #                                (every file reader, the fuzz-found regressions, the material laws; a few minutes)
 #   extra arguments go to ctest (e.g. -R Inp, -L solver)
