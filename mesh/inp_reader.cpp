@@ -16,7 +16,6 @@
 namespace cushion::mesh {
 namespace {
 
-std::string upper(std::string s) { return io::upper_case(std::move(s)); }
 
 using Line = InpLine;
 using Block = InpBlock;
@@ -53,11 +52,11 @@ void load(const std::string& text, const std::string& name, std::vector<Line>& l
     if (t.empty() || t.rfind("**", 0) == 0) continue;
     const Line line{name, number, t};
     const std::vector<std::string> keyword_fields = t[0] == '*' ? inp_fields(t.substr(1)) : std::vector<std::string>{};
-    if (!keyword_fields.empty() && upper(keyword_fields.front()) == "INCLUDE") {
+    if (!keyword_fields.empty() && io::upper_case(keyword_fields.front()) == "INCLUDE") {
       std::string input;
       for (const std::string& option : keyword_fields) {
         const auto eq = option.find('=');
-        if (eq != std::string::npos && upper(trim(option.substr(0, eq))) == "INPUT")
+        if (eq != std::string::npos && io::upper_case(trim(option.substr(0, eq))) == "INPUT")
           input = trim(option.substr(eq + 1));
       }
       if (input.size() >= 2 && input.front() == '"' && input.back() == '"')
@@ -93,11 +92,11 @@ std::vector<Block> blocks(const std::vector<Line>& lines) {
     const std::vector<std::string> parts = inp_fields(line.text.substr(1));
     if (parts.empty() || parts[0].empty()) fail(line, "", "empty keyword");
     // Collapse inner blanks of multi-word keywords ("*End Step" -> "END STEP").
-    std::istringstream words(upper(parts[0]));
+    std::istringstream words(io::upper_case(parts[0]));
     for (std::string w; words >> w;) block.name += (block.name.empty() ? "" : " ") + w;
     for (std::size_t i = 1; i < parts.size(); ++i) {
       const auto eq = parts[i].find('=');
-      const std::string key = upper(trim(parts[i].substr(0, eq)));
+      const std::string key = io::upper_case(trim(parts[i].substr(0, eq)));
       block.options[key] = eq == std::string::npos ? "" : trim(parts[i].substr(eq + 1));
     }
     out.push_back(std::move(block));
@@ -183,17 +182,9 @@ class Reader {
       fail(line, keyword, "undefined element label " + std::to_string(label));
     return it->second;
   }
-  // Set lookup: exact name first, then case-insensitive (ABAQUS names are case-insensitive).
-  template <class Sets>
-  static typename Sets::iterator find_set(Sets& sets, const std::string& name) {
-    auto it = sets.find(name);
-    if (it != sets.end()) return it;
-    return std::find_if(sets.begin(), sets.end(),
-                        [&](const auto& entry) { return upper(entry.first) == upper(name); });
-  }
   template <class Sets>
   static std::string canonical(Sets& sets, const std::string& name) {
-    const auto it = find_set(sets, name);
+    const auto it = find_name(sets, name);
     return it == sets.end() ? name : it->first;
   }
 
@@ -221,7 +212,7 @@ class Reader {
     static const std::map<std::string, ElementType> types = {
         {"C3D8", ElementType::hex8},   {"C3D8R", ElementType::hex8},    {"C3D4", ElementType::tet4},
         {"C3D10", ElementType::tet10}, {"C3D20", ElementType::hex20}, {"C3D20R", ElementType::hex20r}};
-    const std::string type_name = upper(required(block, "TYPE"));
+    const std::string type_name = io::upper_case(required(block, "TYPE"));
     const auto type = types.find(type_name);
     if (type == types.end())
       fail(block.keyword, block.name,
@@ -284,7 +275,7 @@ class Reader {
         if (std::isdigit(static_cast<unsigned char>(item[0])) || item[0] == '-') {
           members.push_back(to_index(line, integer(line, block.name, item)));
         } else {
-          const auto it = find_set(sets, item);
+          const auto it = find_name(sets, item);
           if (it == sets.end()) fail(line, block.name, "unknown set '" + item + "'");
           members.insert(members.end(), it->second.begin(), it->second.end());
         }
@@ -300,7 +291,7 @@ class Reader {
                 mesh_.node_sets);
     if (block.options.count("ELSET")) {  // nodes of the elements of an element set
       const std::string elset = required(block, "ELSET");
-      const auto it = find_set(mesh_.element_sets, elset);
+      const auto it = find_name(mesh_.element_sets, elset);
       if (it == mesh_.element_sets.end()) fail(block.keyword, block.name, "unknown ELSET '" + elset + "'");
       for (int e : it->second)
         for (int a = 0; a < nodes_per_element(mesh_.elements[e].type); ++a)
@@ -324,7 +315,7 @@ class Reader {
 
   void surface(const Block& block) {
     const auto type = block.options.find("TYPE");
-    if (type != block.options.end() && upper(type->second) != "ELEMENT")
+    if (type != block.options.end() && io::upper_case(type->second) != "ELEMENT")
       fail(block.keyword, block.name, "only TYPE=ELEMENT is supported, got TYPE=" + type->second);
     const std::string name = required(block, "NAME");
     std::vector<Face> faces;
@@ -335,7 +326,7 @@ class Reader {
       if (std::isdigit(static_cast<unsigned char>(f[0][0]))) {
         elements.push_back(element_index(line, block.name, integer(line, block.name, f[0])));
       } else {
-        const auto it = find_set(mesh_.element_sets, f[0]);
+        const auto it = find_name(mesh_.element_sets, f[0]);
         if (it == mesh_.element_sets.end()) fail(line, block.name, "unknown element set '" + f[0] + "'");
         elements = it->second;
       }
@@ -346,7 +337,7 @@ class Reader {
           if (member[face.element]) faces.push_back(face);
         continue;
       }
-      const std::string id = upper(f[1]);
+      const std::string id = io::upper_case(f[1]);
       const int number = id.size() == 2 && id[0] == 'S' && std::isdigit(static_cast<unsigned char>(id[1]))
                              ? id[1] - '0' : 0;
       for (int e : elements) {

@@ -10,12 +10,12 @@
 #include "io/input_error.hpp"
 #include "io/text_support.hpp"
 #include "mesh/shape.hpp"
+#include "mesh/text.hpp"
 
 namespace cushion::mesh {
 
 namespace {
 
-std::string upper(std::string s) { return io::upper_case(std::move(s)); }
 
 std::string join(const std::vector<std::string>& names) {
   std::string out;
@@ -24,10 +24,7 @@ std::string join(const std::vector<std::string>& names) {
 }
 
 const std::vector<int>& find_element_set(const Mesh& mesh, const std::string& name) {
-  auto it = mesh.element_sets.find(name);
-  if (it == mesh.element_sets.end())
-    it = std::find_if(mesh.element_sets.begin(), mesh.element_sets.end(),
-                      [&](const auto& entry) { return upper(entry.first) == upper(name); });
+  const auto it = find_name(mesh.element_sets, name);
   if (it == mesh.element_sets.end()) {
     std::vector<std::string> known;
     for (const auto& entry : mesh.element_sets) known.push_back(entry.first);

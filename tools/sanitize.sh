@@ -49,12 +49,13 @@ fi
 end=$(date +%s)
 
 # A log file that holds only LeakSanitizer's "Suppressions used" statistics (the PETSc tests) is not a report.
-reports=$({ grep -l -E "ERROR: |runtime error: " -r "$LOGS" || true; } | wc -l)
+report_files=$(grep -l -E "ERROR: |runtime error: " -r "$LOGS" || true)
+reports=$(printf '%s' "$report_files" | grep -c . || true)
 echo "sanitize: build $((built - start)) s, tests $((end - built)) s on $(nproc) cores (load now: $(cut -d' ' -f1-3 /proc/loadavg))"
 if [ "$reports" -gt 0 ]; then
   echo "sanitize: $reports sanitizer report(s) in $LOGS:"
-  grep -l -E "ERROR: |runtime error: " -r "$LOGS" | head -20
-  head -40 "$(grep -l -E "ERROR: |runtime error: " -r "$LOGS" | head -1)"
+  printf '%s\n' "$report_files" | head -20
+  head -40 "$(printf '%s\n' "$report_files" | head -1)"
   exit 1
 fi
 [ $status -eq 0 ] && echo "sanitize: all tests passed, no sanitizer report" || echo "sanitize: ctest failed ($status)"

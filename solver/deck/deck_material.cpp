@@ -31,7 +31,7 @@ int terms_parameter(const Block& b) {
 void read_moduli(DeckMaterial& m, const Block& b) {
   const auto moduli = parameter(b, "MODULI");
   if (!moduli) return;
-  const std::string v = upper(*moduli);
+  const std::string v = io::upper_case(*moduli);
   if (v != "LONG TERM" && v != "INSTANTANEOUS") fail(b, b.keyword, "MODULI must be LONG TERM or INSTANTANEOUS");
   m.spec.moduli = v == "LONG TERM" ? material::ModuliConvention::long_term : material::ModuliConvention::instantaneous;
   m.moduli = b.keyword;
@@ -73,13 +73,13 @@ void material(State& s, const Block& b) {
   check_parameters(b, {"NAME"});
   if (s.step) fail(b, b.keyword, "must come before the first *STEP");
   const std::string name = required_parameter(b, "NAME");
-  if (s.materials.count(upper(name))) fail(b, b.keyword, "material " + name + " is defined twice");
+  if (s.materials.count(io::upper_case(name))) fail(b, b.keyword, "material " + name + " is defined twice");
   DeckMaterial m;
   m.name = name;
   m.defined = b.keyword;
   m.spec.name = name;
-  s.materials[upper(name)] = m;
-  s.current_material = upper(name);
+  s.materials[io::upper_case(name)] = m;
+  s.current_material = io::upper_case(name);
 }
 
 void hyperfoam(State& s, const Block& b) {
@@ -130,7 +130,7 @@ void hyperelastic(State& s, const Block& b) {
 void viscoelastic(State& s, const Block& b) {
   check_parameters(b, {"TIME"});
   DeckMaterial& m = current(s, b);
-  if (upper(required_parameter(b, "TIME")) != "PRONY") fail(b, b.keyword, "only TIME=PRONY is supported by cushion run");
+  if (io::upper_case(required_parameter(b, "TIME")) != "PRONY") fail(b, b.keyword, "only TIME=PRONY is supported by cushion run");
   if (m.has_prony) fail(b, b.keyword, "material " + m.name + " already has a *VISCOELASTIC");
   m.has_prony = true;
   if (b.data.empty()) fail(b, b.keyword, "no Prony terms (lines 'g_i, k_i, tau_i')");
@@ -158,7 +158,7 @@ void solid_section(State& s, const Block& b) {
   check_parameters(b, {"ELSET", "MATERIAL"});
   if (s.step) fail(b, b.keyword, "must come before the first *STEP");
   const std::string elset = element_set(s, b, b.keyword, required_parameter(b, "ELSET"));
-  s.sections.push_back({b.keyword, elset, upper(required_parameter(b, "MATERIAL"))});
+  s.sections.push_back({b.keyword, elset, io::upper_case(required_parameter(b, "MATERIAL"))});
 }
 
 void finish_material(State& s) {

@@ -28,8 +28,6 @@ void check_parameters(const Block& block, const std::vector<std::string>& allowe
 std::optional<std::string> parameter(const Block& block, const std::string& key);
 /// Value of a required parameter (InputError "missing KEY=" otherwise).
 std::string required_parameter(const Block& block, const std::string& key);
-/// Upper case copy.
-std::string upper(std::string s);
 /// Finite number / whole number of one field of a data line (InputError naming the line otherwise).
 double number(const Block& block, const Line& line, const std::string& field);
 int integer(const Block& block, const Line& line, const std::string& field);

@@ -8,6 +8,7 @@
 
 #include "io/input_error.hpp"
 #include "io/text_support.hpp"
+#include "mesh/text.hpp"
 #include "solver/deck/deck_parts.hpp"
 
 namespace cushion::solver {
@@ -43,7 +44,6 @@ std::string required_parameter(const Block& block, const std::string& key) {
   return *value;
 }
 
-std::string upper(std::string s) { return io::upper_case(std::move(s)); }
 
 double number(const Block& block, const Line& line, const std::string& field) {
   const std::optional<double> value = io::parse_finite_number(field);
@@ -79,16 +79,6 @@ std::vector<double> packed_numbers(const Block& block, std::size_t count) {
   return out;
 }
 
-namespace {
-
-/// The set of `sets` whose name equals `name` ignoring case, or end.
-template <class Sets>
-typename Sets::const_iterator find_set(const Sets& sets, const std::string& name) {
-  return std::find_if(sets.begin(), sets.end(), [&](const auto& entry) { return upper(entry.first) == upper(name); });
-}
-
-}  // namespace
-
 std::string node_target(State& s, const Block& block, const Line& line, const std::string& field) {
   if (field.empty()) fail(block, line, "missing node or node set");
   if (std::isdigit(static_cast<unsigned char>(field[0])) || field[0] == '-') {
@@ -99,13 +89,13 @@ std::string node_target(State& s, const Block& block, const Line& line, const st
     s.out.mesh.node_sets[name] = {it->second};
     return name;
   }
-  const auto it = find_set(s.out.mesh.node_sets, field);
+  const auto it = mesh::find_name(s.out.mesh.node_sets, field);
   if (it == s.out.mesh.node_sets.end()) fail(block, line, "unknown node set '" + field + "'");
   return it->first;
 }
 
 std::string element_set(State& s, const Block& block, const Line& line, const std::string& name) {
-  const auto it = find_set(s.out.mesh.element_sets, name);
+  const auto it = mesh::find_name(s.out.mesh.element_sets, name);
   if (it == s.out.mesh.element_sets.end()) fail(block, line, "unknown element set '" + name + "'");
   return it->first;
 }

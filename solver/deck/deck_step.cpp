@@ -7,6 +7,7 @@
 #include <cctype>
 
 #include "io/input_error.hpp"
+#include "io/text_support.hpp"
 #include "solver/deck/deck_parts.hpp"
 
 namespace cushion::solver::deck {
@@ -31,22 +32,22 @@ std::optional<std::string> amplitude_parameter(const State& s, const Block& b) {
   const auto name = parameter(b, "AMPLITUDE");
   if (!name) return std::nullopt;
   if (!s.step) fail(b, b.keyword, "AMPLITUDE= is only allowed inside a *STEP");
-  if (!s.out.spec.amplitudes.count(upper(*name))) fail(b, b.keyword, "unknown amplitude '" + *name + "'");
-  return upper(*name);
+  if (!s.out.spec.amplitudes.count(io::upper_case(*name))) fail(b, b.keyword, "unknown amplitude '" + *name + "'");
+  return io::upper_case(*name);
 }
 
 /// OP=MOD (default) or OP=NEW (true: the conditions in effect are removed first).
 bool op_new(const State& s, const Block& b) {
   const auto op = parameter(b, "OP");
-  if (!op || upper(*op) == "MOD") return false;
-  if (upper(*op) != "NEW") fail(b, b.keyword, "OP must be MOD or NEW");
+  if (!op || io::upper_case(*op) == "MOD") return false;
+  if (io::upper_case(*op) != "NEW") fail(b, b.keyword, "OP must be MOD or NEW");
   if (!s.step) fail(b, b.keyword, "OP=NEW is only allowed inside a *STEP");
   return true;
 }
 
 /// Components a *BOUNDARY type word fixes (solids: symmetry planes fix one translation).
 std::optional<std::array<bool, 3>> boundary_type(const std::string& word) {
-  const std::string w = upper(word);
+  const std::string w = io::upper_case(word);
   if (w == "ENCASTRE" || w == "PINNED") return std::array<bool, 3>{true, true, true};
   if (w == "XSYMM") return std::array<bool, 3>{true, false, false};
   if (w == "YSYMM") return std::array<bool, 3>{false, true, false};
@@ -94,7 +95,7 @@ std::vector<std::string> print_variables(State& s, const Block& b, const std::ve
   std::vector<std::string> out;
   for (const Line& line : b.data)
     for (const std::string& f : mesh::inp_fields(line.text)) {
-      const std::string v = upper(f);
+      const std::string v = io::upper_case(f);
       if (std::find(supported.begin(), supported.end(), v) != supported.end()) out.push_back(v);
       else if (!v.empty())
         s.out.warnings.push_back(where(line) + ": *" + b.name + ": output variable " + f + " skipped (cushion prints " +
@@ -123,13 +124,13 @@ void add_print(State& s, PrintRequest::Kind kind, const std::string& set, const 
 
 void amplitude(State& s, const Block& b) {
   check_parameters(b, {"NAME", "TIME", "DEFINITION", "VALUE"});
-  const std::string name = upper(required_parameter(b, "NAME"));
+  const std::string name = io::upper_case(required_parameter(b, "NAME"));
   if (s.out.spec.amplitudes.count(name)) fail(b, b.keyword, "amplitude " + name + " is defined twice");
-  const std::string time = upper(parameter(b, "TIME").value_or("STEP TIME"));
+  const std::string time = io::upper_case(parameter(b, "TIME").value_or("STEP TIME"));
   if (time != "STEP TIME" && time != "TOTAL TIME") fail(b, b.keyword, "TIME must be STEP TIME or TOTAL TIME");
-  if (upper(parameter(b, "DEFINITION").value_or("TABULAR")) != "TABULAR")
+  if (io::upper_case(parameter(b, "DEFINITION").value_or("TABULAR")) != "TABULAR")
     fail(b, b.keyword, "only DEFINITION=TABULAR is supported by cushion run");
-  if (upper(parameter(b, "VALUE").value_or("RELATIVE")) != "RELATIVE")
+  if (io::upper_case(parameter(b, "VALUE").value_or("RELATIVE")) != "RELATIVE")
     fail(b, b.keyword, "only VALUE=RELATIVE is supported by cushion run");
   Amplitude a;
   a.total_time = time == "TOTAL TIME";
@@ -198,7 +199,7 @@ void dload(State& s, const Block& b) {
   for (const Line& line : b.data) {
     const std::vector<std::string> f = mesh::inp_fields(line.text);
     if (f.size() != 3) fail(b, line, "expected 'element or element set, Pn, magnitude'");
-    const std::string type = upper(f[1]);
+    const std::string type = io::upper_case(f[1]);
     if (type.size() != 2 || type[0] != 'P' || type[1] < '1' || type[1] > '6')
       fail(b, line, "load type " + f[1] + " is not supported by cushion run (face pressures P1..P6 only)");
     std::vector<int> elements;
@@ -230,16 +231,16 @@ void step(State& s, const Block& b) {
   StepSpec step;
   step.name = parameter(b, "NAME").value_or("Step-" + std::to_string(s.out.spec.steps.size() + 1));
   for (const StepSpec& other : s.out.spec.steps)
-    if (upper(other.name) == upper(step.name)) fail(b, b.keyword, "step name " + step.name + " is used twice");
+    if (io::upper_case(other.name) == io::upper_case(step.name)) fail(b, b.keyword, "step name " + step.name + " is used twice");
   if (const auto inc = parameter(b, "INC")) {
     step.increment.max_increments = integer(b, b.keyword, *inc);
     if (step.increment.max_increments < 1) fail(b, b.keyword, "INC must be >= 1");
   }
   const auto nlgeom = parameter(b, "NLGEOM");
-  if (!nlgeom || upper(*nlgeom) == "NO")
+  if (!nlgeom || io::upper_case(*nlgeom) == "NO")
     s.out.warnings.push_back(where(b.keyword) +
                              ": *STEP without NLGEOM: cushion always solves the geometrically nonlinear problem");
-  else if (!nlgeom->empty() && upper(*nlgeom) != "YES")
+  else if (!nlgeom->empty() && io::upper_case(*nlgeom) != "YES")
     fail(b, b.keyword, "NLGEOM must be YES or NO");
   s.out.spec.steps.push_back(step);
   s.step = s.out.spec.steps.size() - 1;
