@@ -14,9 +14,11 @@ namespace {
 
 std::string fmt(const char* format, double x) { return io::format_with(format, x); }
 
-/// Output frame times of a step [s of step time] (frames_every), excluding the step end.
+/// Output frame times of a step [s of step time] (frames_every or frame_times), excluding the step end.
 std::vector<double> frame_times(const StepSpec& step) {
   std::vector<double> times;
+  for (double t : step.output.frame_times)
+    if (t > 0.0 && t < step.period * (1.0 - 1e-12)) times.push_back(t);
   if (step.output.frames_every)
     for (int k = 1; k * *step.output.frames_every < step.period * (1.0 - 1e-12); ++k)
       times.push_back(k * *step.output.frames_every);
@@ -116,7 +118,8 @@ IncrementControl run_increment_loop(AnalysisContext& ctx, const StepSpec& step, 
   IncrementControl control(increment_limits(step, settings), targets);
   auto frame_due = [&](double t_step, int increment) {
     if (t_step >= period) return true;
-    if (!step.output.frames_every) return increment % step.output.frame_every_increments == 0;
+    if (!step.output.frames_every && step.output.frame_times.empty())
+      return increment % step.output.frame_every_increments == 0;
     return std::any_of(frames.begin(), frames.end(), [&](double t) { return std::abs(t - t_step) <= 1e-12 * period; });
   };
 

@@ -236,7 +236,8 @@ struct HistoryRequest {
 
 struct OutputSpec {
   std::optional<double> frames_every;           ///< [s] of step time
-  int frame_every_increments = 1;               ///< used when frames_every is empty
+  int frame_every_increments = 1;               ///< used when frames_every and frame_times are empty
+  std::vector<double> frame_times;              ///< [s of step time], ascending (decks: *TIME POINTS)
   std::vector<HistoryRequest> history;
 };
 

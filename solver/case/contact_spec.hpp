@@ -7,7 +7,10 @@
 ///                "penalty_MPa_per_mm"? = 1, "tangential_penalty_MPa_per_mm"? = 0.1 x penalty,
 ///                "friction"? = 0, "tolerance_mm"? = 0.1, "smoothing_mm"? = tolerance / 2 (width of
 ///                the C1-rounded contact law, 0: plain penalty), "max_augmentations"? = 10,
-///                "force_factor"? = 1}]
+///                "force_factor"? = 1, "pressure_overclosure"? = "hard" | "linear"}]
+/// pressure_overclosure "hard" (default): augmented Lagrangian, the penetration driven below tolerance_mm;
+/// "linear": the pressure is penalty_MPa_per_mm x overclosure and stays so (no augmentation: the softened
+/// law of ABAQUS/CalculiX *SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR).
 /// motion_mm: translation of the indenter at the end of the step relative to where the case file
 /// places it [mm]; without amplitude it ramps linearly from its value at the end of the previous
 /// step (0 in the first step), with an amplitude it is motion_mm * a(t). The indenter's shape and
@@ -20,6 +23,7 @@
 #include <string>
 
 #include "material/tensor.hpp"
+#include "mesh/stl.hpp"
 
 namespace cushion::solver {
 
@@ -31,6 +35,7 @@ struct ContactParameters {
   double tolerance = 0.1;           ///< largest penetration accepted after augmentation [mm]
   double smoothing = -1.0;          ///< width delta of the C1 contact law [mm]; < 0: tolerance / 2
   int max_augmentations = 10;       ///< Uzawa updates per increment before giving up
+  bool augmented = true;            ///< false: linear pressure-overclosure law (multipliers stay 0)
 };
 
 /// Parametric SIT-BAR surrogate (docs/physics.md 1.1; every number assumed unless noted); the surface:
@@ -63,14 +68,18 @@ struct SitBarShape {
 ///   "c_mm"? = 120, "blend_mm"? = 20, "plate_x_mm"? = 360, "plate_y_mm"? = 300, "plate_edge_mm"? = 10,
 ///   "centre_mm"? = [0, 0]}
 ///  {"type": "stl", "file": "indenter.stl"}                              closed, outward normals
+/// Type facets (decks only, not a case-file type): the element faces of a *RIGID BODY's master surface,
+/// an open triangle set with normals towards the foam (solver/deck/deck_contact.cpp).
 struct IndenterSpec {
-  enum class Type { plane, sphere, cylinder, flat_punch, sitbar, stl } type = Type::plane;
+  enum class Type { plane, sphere, cylinder, flat_punch, sitbar, stl, facets } type = Type::plane;
   Vec3 point = Vec3::Zero();       ///< plane point / sphere centre / cylinder point / punch (cx, cy, bottom) [mm]
   Vec3 direction = Vec3::UnitZ();  ///< plane normal / cylinder axis [-]
   double radius = 0.0;             ///< [mm]
   double edge_radius = 1.0;        ///< flat punch [mm]
   SitBarShape sitbar;              ///< type sitbar only
   std::filesystem::path stl_file;  ///< resolved against the case folder
+  std::shared_ptr<const mesh::TriangleSurface> facets;  ///< type facets: triangles [mm], normals to the foam
+  std::string facets_name;         ///< type facets: "surface SIND of rigid body INDENTER (deck.inp:517)"
 };
 
 /// One "contact" entry of a step.

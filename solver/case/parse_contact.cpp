@@ -87,6 +87,7 @@ ContactParameters parse_contact_parameters(const Obj& o) {
       o.fail("smoothing_mm", "must be >= 0 and at most 10 x tolerance_mm [mm]");
   }
   if (o.has("max_augmentations")) p.max_augmentations = o.integer("max_augmentations", 0, 1000);
+  p.augmented = o.choice_or("pressure_overclosure", {"hard", "linear"}, "hard") == "hard";
   return p;
 }
 

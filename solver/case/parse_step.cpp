@@ -151,7 +151,7 @@ StepSpec parse_step(const Obj& o, const CaseSpec& spec) {
         o.element("contact", i,
                   {"name", "set", "indenter", "motion_mm", "amplitude", "penalty_MPa_per_mm",
                    "tangential_penalty_MPa_per_mm", "friction", "tolerance_mm", "smoothing_mm", "max_augmentations",
-                   "force_factor"}),
+                   "force_factor", "pressure_overclosure"}),
         spec, step));
   if (o.has("output"))
     step.output = parse_output(o.child("output", {"frames_every_s", "frame_every_increments", "history"}), spec);

@@ -209,6 +209,7 @@ AugmentOutcome ContactSet::augment() {
   AugmentOutcome out;
   for (std::size_t k = 0; k < nodes_.size(); ++k)
     if (t_N_[k] > 0.0) out.max_penetration = std::max(out.max_penetration, std::abs(gap_[k]));
+  if (!p_.augmented) return out;  // linear pressure-overclosure law: the penalty force is the answer
   const bool within = out.max_penetration <= p_.tolerance;
   lambda_trial_ = t_N_;  // Uzawa update (also the warm start of the next increment)
   if (within) return out;

@@ -11,7 +11,9 @@
 /// contact opening/closing: no active-set cycling of semi-smooth Newton. The force is the gradient
 /// of a potential, so the tangent eps p'(x) grad g grad g^T - t_N H is exact and symmetric. After
 /// each converged Newton solve augment() sets lambda = t_N until the largest penetration is within
-/// `tolerance` (Uzawa loop around Newton).
+/// `tolerance` (Uzawa loop around Newton). With ContactParameters::augmented false (the linear
+/// pressure-overclosure law of ABAQUS/CalculiX) lambda stays 0: t_N = p(-eps_a g_a), the pressure is
+/// penalty x overclosure, and augment() accepts every converged solve.
 /// Tangential (Coulomb, regularised): each contacting node has a stick point xi in the indenter
 /// frame; trial force f_T = -eps_T P (x - c - xi), P = I - n n^T, n = grad g / |grad g|; if
 /// |f_T| > mu t_N the node slips: f_T = mu t_N f_T / |f_T| and xi follows. The stick points are

@@ -49,6 +49,9 @@ std::shared_ptr<const RigidSurface> make_indenter(const IndenterSpec& s, const s
       return make_flat_punch(s.point.x(), s.point.y(), s.point.z(), s.radius, s.edge_radius);
     case IndenterSpec::Type::sitbar: return make_sitbar(s.sitbar);
     case IndenterSpec::Type::stl: return stl_indenter(s, where, planes, notes);
+    case IndenterSpec::Type::facets:
+      if (!s.facets) throw InputError(where + ": rigid surface without facets");
+      return make_facet_surface(*s.facets, s.facets_name + " (" + where + ")");
   }
   throw InputError(where + ": unknown indenter type");
 }

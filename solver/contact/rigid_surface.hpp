@@ -61,6 +61,12 @@ std::shared_ptr<const RigidSurface> make_sitbar(const SitBarShape& shape);
 /// surface is not closed; `where` names it in messages.
 std::shared_ptr<const RigidSurface> make_stl_surface(const mesh::TriangleSurface& surface, const std::string& where);
 
+/// Rigid surface of an open triangle set whose normals (right-hand rule) point towards the foam: the
+/// element faces of a deck's rigid-body master surface. Signed distance as make_stl_surface, without
+/// the closed check (the sign comes from the pseudonormals of the nearest feature, so points near the
+/// surface, on either side, get the right sign). Throws InputError if the set is empty.
+std::shared_ptr<const RigidSurface> make_facet_surface(const mesh::TriangleSurface& surface, const std::string& where);
+
 /// An axis-aligned plane x[axis] = offset [mm] (axis 0, 1, 2: x, y, z).
 struct AxisPlane {
   int axis = 0;

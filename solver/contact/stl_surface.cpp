@@ -53,8 +53,8 @@ struct Box {
 class StlSurface final : public RigidSurface {
  public:
   /// `dropped`: triangles of the closed surface removed on symmetry planes (for describe()).
-  StlSurface(const mesh::TriangleSurface& s, std::string where, int dropped = 0)
-      : s_(s), where_(std::move(where)), dropped_(dropped) {
+  StlSurface(const mesh::TriangleSurface& s, std::string where, int dropped = 0, bool closed = true)
+      : s_(s), where_(std::move(where)), dropped_(dropped), closed_(closed) {
     const std::size_t nt = s_.triangles.size();
     face_normal_.resize(nt);
     vertex_normal_.assign(s_.vertices.size(), Vec3::Zero());
@@ -116,7 +116,7 @@ class StlSurface final : public RigidSurface {
   }
 
   std::string describe() const override {
-    return "closed STL surface " + where_ + " (" + std::to_string(s_.triangles.size()) + " triangles" +
+    return (closed_ ? "closed STL surface " : "rigid facets of ") + where_ + " (" + std::to_string(s_.triangles.size()) + " triangles" +
            (dropped_ ? "; " + std::to_string(dropped_) + " more in symmetry planes dropped" : "") + ")";
   }
 
@@ -180,6 +180,7 @@ class StlSurface final : public RigidSurface {
   mesh::TriangleSurface s_;
   std::string where_;
   int dropped_ = 0;
+  bool closed_ = true;
   std::vector<Vec3> face_normal_, vertex_normal_;
   std::vector<std::array<Vec3, 3>> edge_normal_;  ///< per triangle, edge k = (k, k+1)
   std::vector<int> order_;
@@ -191,6 +192,11 @@ class StlSurface final : public RigidSurface {
 std::shared_ptr<const RigidSurface> make_stl_surface(const mesh::TriangleSurface& surface, const std::string& where) {
   mesh::check_closed(surface, where);
   return std::make_shared<StlSurface>(surface, where);
+}
+
+std::shared_ptr<const RigidSurface> make_facet_surface(const mesh::TriangleSurface& surface, const std::string& where) {
+  if (surface.triangles.empty()) throw InputError(where + ": the surface has no facets");
+  return std::make_shared<StlSurface>(surface, where, 0, false);
 }
 
 std::string to_string(const AxisPlane& plane) {

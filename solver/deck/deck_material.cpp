@@ -1,5 +1,5 @@
 // Materials and sections of a deck (deck_parts.hpp): *MATERIAL, *HYPERFOAM, *HYPERELASTIC (NEO HOOKE,
-// OGDEN), *VISCOELASTIC (TIME=PRONY), *DENSITY, *SOLID SECTION. Moduli are converted with the deck's
+// OGDEN), *ELASTIC (as its small-strain neo-Hooke), *VISCOELASTIC (TIME=PRONY), *DENSITY, *SOLID SECTION. Moduli are converted with the deck's
 // stress unit, density with its density unit.
 #include <algorithm>
 #include <cmath>
@@ -127,6 +127,22 @@ void hyperelastic(State& s, const Block& b) {
   set_ogden(s, m, b, std::move(terms), std::move(D));
 }
 
+void elastic(State& s, const Block& b) {
+  check_parameters(b, {"TYPE"});
+  if (io::upper_case(parameter(b, "TYPE").value_or("ISO")) != "ISO")
+    fail(b, b.keyword, "only TYPE=ISO (isotropic) is supported by cushion run");
+  DeckMaterial& m = current(s, b);
+  set_base(m, b);
+  const std::vector<double> v = packed_numbers(b, 2);  // E, nu
+  const double E = v[0], nu = v[1];
+  if (!(E > 0.0)) fail(b, b.data.front(), "Young's modulus must be > 0");
+  if (!(nu > -1.0 && nu < 0.5)) fail(b, b.data.front(), "Poisson's ratio must lie in (-1, 0.5)");
+  // Neo-Hooke with the same initial shear and bulk moduli: mu = 2 C10 = E / (2 (1 + nu)),
+  // K = 2 / D1 = E / (3 (1 - 2 nu)) (docs/physics.md, linear elasticity as the small-strain limit).
+  set_ogden(s, m, b, {{E / (2.0 * (1.0 + nu)), 2.0}}, {6.0 * (1.0 - 2.0 * nu) / E});
+  m.elastic = b.keyword;
+}
+
 void viscoelastic(State& s, const Block& b) {
   check_parameters(b, {"TIME"});
   DeckMaterial& m = current(s, b);
@@ -181,7 +197,11 @@ void finish_material(State& s) {
                      std::to_string(s.out.mesh.elements[missing - covered.begin()].label) +
                      " is in no *SOLID SECTION (every element needs the material)");
   const DeckMaterial& m = s.materials.at(first.material);
-  if (!m.has_base) throw InputError(where(m.defined) + ": *MATERIAL: " + m.name + " has no *HYPERFOAM or *HYPERELASTIC");
+  if (m.elastic)
+    s.out.warnings.push_back(where(*m.elastic) + ": *ELASTIC read as the compressible neo-Hooke solid with the same "
+                             "initial shear and bulk moduli: identical at small strain (linear perturbation steps, "
+                             "small loads), a hyperelastic solid at large strain");
+  if (!m.has_base) throw InputError(where(m.defined) + ": *MATERIAL: " + m.name + " has no *HYPERFOAM, *HYPERELASTIC or *ELASTIC");
   s.out.material = material::build_material(m.spec, where(m.defined) + ": *MATERIAL " + m.name);
 }
 

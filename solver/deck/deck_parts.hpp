@@ -44,6 +44,7 @@ struct DeckMaterial {
   bool has_base = false;    ///< a *HYPERFOAM or *HYPERELASTIC was read
   bool has_prony = false;   ///< a *VISCOELASTIC was read
   std::optional<Line> moduli;  ///< where MODULI= was given (with *VISCOELASTIC only)
+  std::optional<Line> elastic; ///< where *ELASTIC gave the base (read as its small-strain neo-Hooke)
 };
 
 /// Everything read so far.
@@ -64,6 +65,27 @@ struct State {
   std::optional<std::size_t> step;     ///< index in out.spec.steps of the open *STEP
   bool procedure = false;              ///< the open step has its *STATIC / *VISCO
   std::map<int, int> node_index;       ///< node label -> index
+  /// *RIGID BODY: the elements of `elset` move rigidly with node `ref` (labels); `rot` holds rotations.
+  struct RigidBody {
+    Line defined;
+    std::string elset;
+    int ref = 0, rot = 0;  ///< node labels (rot 0: not given)
+  };
+  std::vector<RigidBody> rigid_bodies;
+  std::map<std::string, std::vector<double>> time_points;  ///< *TIME POINTS by upper-case name [s of step time]
+  /// *SURFACE INTERACTION with its *SURFACE BEHAVIOR and *FRICTION.
+  struct Interaction {
+    Line defined;
+    ContactParameters parameters;
+  };
+  std::map<std::string, Interaction> interactions;  ///< by upper-case name
+  std::string current_interaction;                  ///< upper-case name while its options may follow
+  /// *CONTACT PAIR: slave (foam) surface, master (rigid) surface, interaction (upper case).
+  struct ContactPair {
+    Line defined;
+    std::string slave, master, interaction;
+  };
+  std::vector<ContactPair> contact_pairs;
 };
 
 /// Node-set name for a data-line entry: a node label (a one-node set "#node <label>" is added to the
@@ -81,6 +103,18 @@ void density(State& s, const Block& b);
 void solid_section(State& s, const Block& b);
 /// The case's material after every block: the one material of the sections, covering every element.
 void finish_material(State& s);
+void elastic(State& s, const Block& b);
+
+// Handlers (deck_contact.cpp).
+void rigid_body(State& s, const Block& b);
+void surface_interaction(State& s, const Block& b);
+void surface_behavior(State& s, const Block& b);
+void friction(State& s, const Block& b);
+void contact_pair(State& s, const Block& b);
+/// After every block, before finish_material: the rigid bodies' elements and reference nodes leave the
+/// mesh, each contact pair becomes a contact of every step (the master surface's facets as a rigid
+/// indenter moved by the reference node's prescribed displacement), sections on rigid bodies are dropped.
+void finish_contacts(State& s);
 
 // Handlers (deck_step.cpp).
 void amplitude(State& s, const Block& b);
@@ -94,5 +128,6 @@ void end_step(State& s, const Block& b);
 void node_print(State& s, const Block& b);
 void el_print(State& s, const Block& b);
 void result_file(State& s, const Block& b);
+void time_points(State& s, const Block& b);
 
 }  // namespace cushion::solver::deck

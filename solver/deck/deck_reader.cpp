@@ -128,7 +128,10 @@ const std::map<std::string, Handler>& handlers() {
       {"DLOAD", deck::dload},
       {"STEP", deck::step},               {"STATIC", deck::static_procedure}, {"VISCO", deck::visco_procedure},
       {"END STEP", deck::end_step},       {"NODE PRINT", deck::node_print}, {"EL PRINT", deck::el_print},
-      {"NODE FILE", deck::result_file},   {"EL FILE", deck::result_file}};
+      {"NODE FILE", deck::result_file},   {"EL FILE", deck::result_file},   {"ELASTIC", deck::elastic},
+      {"RIGID BODY", deck::rigid_body},   {"SURFACE INTERACTION", deck::surface_interaction},
+      {"SURFACE BEHAVIOR", deck::surface_behavior}, {"FRICTION", deck::friction},
+      {"CONTACT PAIR", deck::contact_pair}, {"TIME POINTS", deck::time_points}};
   return table;
 }
 
@@ -137,17 +140,23 @@ bool output_only(const std::string& name) {
   static const std::vector<std::string> names = {
       "HEADING",     "PREPRINT",       "RESTART",    "OUTPUT",       "NODE OUTPUT", "ELEMENT OUTPUT",
       "CONTACT OUTPUT", "ENERGY OUTPUT", "MONITOR",  "FILE FORMAT",  "CONTACT PRINT", "CONTACT FILE",
-      "SECTION PRINT", "TIME POINTS",   "PRINT"};
+      "SECTION PRINT", "PRINT"};
   return std::find(names.begin(), names.end(), name) != names.end();
 }
 
 /// Material option keywords: they keep the current *MATERIAL open; any other keyword closes it.
 bool material_option(const std::string& name) {
-  return name == "HYPERFOAM" || name == "HYPERELASTIC" || name == "VISCOELASTIC" || name == "DENSITY";
+  return name == "HYPERFOAM" || name == "HYPERELASTIC" || name == "VISCOELASTIC" || name == "DENSITY" ||
+         name == "ELASTIC" || name == "DAMPING";
 }
+
+/// Solution controls: skipped with a warning (cushion's own increment and convergence control decide
+/// how the answer is reached, not what it is).
+bool solution_control(const std::string& name) { return name == "CONTROLS"; }
 
 void dispatch(State& s, const Block& b, std::map<std::string, int>& skipped) {
   if (!material_option(b.name) && b.name != "MATERIAL") s.current_material.clear();
+  if (b.name != "SURFACE BEHAVIOR" && b.name != "FRICTION") s.current_interaction.clear();
   const auto mesh_keyword = mesh_keywords().find(b.name);
   if (mesh_keyword != mesh_keywords().end()) {
     deck::check_parameters(b, mesh_keyword->second);
@@ -156,6 +165,13 @@ void dispatch(State& s, const Block& b, std::map<std::string, int>& skipped) {
   }
   const auto handler = handlers().find(b.name);
   if (handler != handlers().end()) return handler->second(s, b);
+  if (solution_control(b.name)) {
+    if (skipped[b.name]++ == 0)
+      s.out.warnings.push_back(deck::where(b.keyword) + ": keyword *" + b.name +
+                               " skipped (solution controls: cushion's increment and convergence control apply; "
+                               "case-file keys \"solver\" and \"increment\")");
+    return;
+  }
   if (!output_only(b.name)) deck::unsupported_keyword(b);
   if (skipped[b.name]++ == 0)
     s.out.warnings.push_back(deck::where(b.keyword) + ": keyword *" + b.name +
@@ -181,6 +197,7 @@ LoadedCase load_deck(const std::filesystem::path& file, const DeckUnits& units) 
   for (const Block& b : blocks) dispatch(s, b, skipped);
   if (s.step) deck::fail(blocks.back(), blocks.back().keyword, "the last *STEP has no *END STEP");
   if (s.out.spec.steps.empty()) throw InputError(file.string() + ": the deck has no *STEP: nothing to run");
+  deck::finish_contacts(s);
   deck::finish_material(s);
   std::set<std::string> node_sets;
   for (const auto& [name, nodes] : s.out.mesh.node_sets) node_sets.insert(name);

@@ -104,12 +104,23 @@ std::vector<std::string> print_variables(State& s, const Block& b, const std::ve
   return out;
 }
 
-/// Output parameters other than the set are warned about and skipped.
-void warn_output_parameters(State& s, const Block& b, const std::string& set_key) {
-  for (const auto& [key, value] : b.options)
-    if (key != set_key)
-      s.out.warnings.push_back(where(b.keyword) + ": parameter " + key + " of *" + b.name +
-                               " skipped (cushion prints at every frame)");
+/// Output parameters: TIME POINTS= adds its times to the step's frame times (increments end on them, as in
+/// CalculiX); the others but the set are warned about and skipped.
+void output_parameters(State& s, const Block& b, const std::string& set_key) {
+  for (const auto& [key, value] : b.options) {
+    if (key == set_key) continue;
+    if (key == "TIME POINTS") {
+      const auto it = s.time_points.find(io::upper_case(value));
+      if (it == s.time_points.end()) fail(b, b.keyword, "unknown *TIME POINTS '" + value + "'");
+      std::vector<double>& times = open_step(s, b).output.frame_times;
+      times.insert(times.end(), it->second.begin(), it->second.end());
+      std::sort(times.begin(), times.end());
+      times.erase(std::unique(times.begin(), times.end()), times.end());
+      continue;
+    }
+    s.out.warnings.push_back(where(b.keyword) + ": parameter " + key + " of *" + b.name +
+                             " skipped (cushion prints at every frame)");
+  }
 }
 
 void add_print(State& s, PrintRequest::Kind kind, const std::string& set, const std::vector<std::string>& quantities) {
@@ -276,20 +287,46 @@ void end_step(State& s, const Block& b) {
 
 void node_print(State& s, const Block& b) {
   open_step(s, b);
-  warn_output_parameters(s, b, "NSET");
+  output_parameters(s, b, "NSET");
   const std::string set = node_target(s, b, b.keyword, required_parameter(b, "NSET"));
   add_print(s, PrintRequest::Kind::node, set, print_variables(s, b, {"U", "RF"}));
 }
 
 void el_print(State& s, const Block& b) {
   open_step(s, b);
-  warn_output_parameters(s, b, "ELSET");
+  output_parameters(s, b, "ELSET");
   const std::string set = element_set(s, b, b.keyword, required_parameter(b, "ELSET"));
   add_print(s, PrintRequest::Kind::element, set, print_variables(s, b, {"S"}));
 }
 
 void result_file(State& s, const Block& b) {
-  open_step(s, b);  // the frames (results.pvd) are written at every increment anyway
+  open_step(s, b);  // the frames (results.pvd) hold every field anyway
+  output_parameters(s, b, b.name == "NODE FILE" ? "NSET" : "ELSET");
+}
+
+void time_points(State& s, const Block& b) {
+  check_parameters(b, {"NAME", "TIME", "GENERATE"});
+  const std::string name = io::upper_case(required_parameter(b, "NAME"));
+  if (s.time_points.count(name)) fail(b, b.keyword, "time points " + name + " are defined twice");
+  if (io::upper_case(parameter(b, "TIME").value_or("STEP TIME")) != "STEP TIME")
+    fail(b, b.keyword, "only TIME=STEP TIME is supported by cushion run");
+  std::vector<double> times;
+  for (const Line& line : b.data) {
+    std::vector<double> v;
+    for (const std::string& f : mesh::inp_fields(line.text))
+      if (!f.empty()) v.push_back(number(b, line, f));
+    if (!parameter(b, "GENERATE")) {
+      times.insert(times.end(), v.begin(), v.end());
+      continue;
+    }
+    if (v.size() != 3 || !(v[2] > 0.0) || !(v[1] >= v[0]) || (v[1] - v[0]) / v[2] > 1e6)
+      fail(b, line, "GENERATE expects 'start, end, increment' with end >= start and 0 < increment");
+    for (int k = 0; v[0] + k * v[2] <= v[1] * (1.0 + 1e-12); ++k) times.push_back(v[0] + k * v[2]);
+  }
+  if (times.empty()) fail(b, b.keyword, "no times");
+  for (std::size_t k = 0; k < times.size(); ++k)
+    if (!(times[k] >= 0.0) || (k > 0 && !(times[k] > times[k - 1]))) fail(b, b.keyword, "times must be >= 0 and increase");
+  s.time_points[name] = times;
 }
 
 }  // namespace cushion::solver::deck

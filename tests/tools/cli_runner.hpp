@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -69,6 +70,21 @@ inline std::string listed(const std::filesystem::path& dir) {
   std::string text = dir.string() + ": [";
   for (const auto& entry : listing(dir)) text += " " + entry;
   return text + " ]";
+}
+
+/// Writes `text` to dir/name (a deck or case file of a test) and returns that path.
+inline std::filesystem::path write_text(const std::filesystem::path& dir, const std::string& text,
+                                        const std::string& name = "model.inp") {
+  std::ofstream(dir / name) << text;
+  return dir / name;
+}
+
+/// Line number (1-based) of the first line of `text` starting with `start`, -1 if none.
+inline int line_of(const std::string& text, const std::string& start) {
+  int n = 1;
+  for (std::size_t at = 0; at < text.size(); at = text.find('\n', at) + 1, ++n)
+    if (text.compare(at, start.size(), start) == 0) return n;
+  return -1;
 }
 
 /// Bad input: exit code 2 and exactly one line, "cushion: input error: " (or "argument error") followed by a

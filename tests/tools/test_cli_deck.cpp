@@ -50,24 +50,14 @@ double reaction_at(const cushion::CsvTable& t, double time) {
   return sum;
 }
 
-fs::path write(const fs::path& dir, const std::string& text, const std::string& name = "model.inp") {
-  std::ofstream(dir / name) << text;
-  return dir / name;
-}
-
-/// Line number of the first line of `text` starting with `start`.
-int line_of(const std::string& text, const std::string& start) {
-  int n = 1;
-  for (std::size_t at = 0; at < text.size(); at = text.find('\n', at) + 1, ++n)
-    if (text.compare(at, start.size(), start) == 0) return n;
-  return -1;
-}
+using cli_test::line_of;
+using cli_test::write_text;
 
 }  // namespace
 
 TEST(Deck, CubeMatchesClosedFormAndConditionsCarryOverSteps) {
   const fs::path dir = cli_test::scratch_dir("cushion_test_deck_");
-  const CommandRun r = run_cushion("run " + quoted(write(dir, cube_deck(10.0, 0.01, 2.0, 1.0))) + " -o " +
+  const CommandRun r = run_cushion("run " + quoted(write_text(dir, cube_deck(10.0, 0.01, 2.0, 1.0))) + " -o " +
                                    quoted(dir / "out") + " --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("model.inp:1: keyword *HEADING skipped (output only"), std::string::npos) << r.output;
@@ -80,9 +70,9 @@ TEST(Deck, CubeMatchesClosedFormAndConditionsCarryOverSteps) {
 TEST(Deck, UnitsConvertTheDeckToMillimetresNewtonsMegapascals) {
   // The same cube in m-N-Pa (side 0.01 m, mu 1e4 Pa, 2 mm = 0.002 m): the same table in mm and N.
   const fs::path dir = cli_test::scratch_dir("cushion_test_deck_");
-  const CommandRun mm = run_cushion("run " + quoted(write(dir, cube_deck(10.0, 0.01, 2.0, 1.0), "mm.inp")) + " -o " +
+  const CommandRun mm = run_cushion("run " + quoted(write_text(dir, cube_deck(10.0, 0.01, 2.0, 1.0), "mm.inp")) + " -o " +
                                     quoted(dir / "mm") + " --quiet");
-  const CommandRun si = run_cushion("run " + quoted(write(dir, cube_deck(0.01, 1e4, 0.002, 0.001), "si.inp")) +
+  const CommandRun si = run_cushion("run " + quoted(write_text(dir, cube_deck(0.01, 1e4, 0.002, 0.001), "si.inp")) +
                                     " --units m-N-Pa -o " + quoted(dir / "si") + " --quiet");
   ASSERT_EQ(mm.exit_code, 0) << mm.output;
   ASSERT_EQ(si.exit_code, 0) << si.output;
@@ -105,7 +95,7 @@ TEST(Deck, UnitsConvertTheDeckToMillimetresNewtonsMegapascals) {
 TEST(Deck, OutputOnlyKeywordsAreWarnedWithTheirLineAndSkipped) {
   const fs::path dir = cli_test::scratch_dir("cushion_test_deck_");
   const std::string deck = cube_deck(10.0, 0.01, 2.0, 1.0, "*OUTPUT, FIELD\n*ELEMENT OUTPUT\nS, E\n");
-  const CommandRun r = run_cushion("run " + quoted(write(dir, deck)) + " -o " + quoted(dir / "out") + " --quiet");
+  const CommandRun r = run_cushion("run " + quoted(write_text(dir, deck)) + " -o " + quoted(dir / "out") + " --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const std::string& keyword : {"*OUTPUT", "*ELEMENT OUTPUT"})
     EXPECT_NE(r.output.find("cushion: warning: " + (dir / "model.inp").string() + ":" +
@@ -120,12 +110,12 @@ TEST(Deck, UnsupportedKeywordOrParameterIsOneLineWithFileAndLineAndNothingIsWrit
     std::string extra, line_start, message;
   } cases[] = {
       {"*EQUATION\n2\n5, 3, 1.0, 6, 3, -1.0\n", "*EQUATION", "keyword *EQUATION is not supported by cushion run"},
-      {"*CONTROLS, PARAMETERS=FIELD\n0.005\n", "*CONTROLS", "keyword *CONTROLS is not supported by cushion run"},
+      {"*PLASTIC\n1.0, 0.0\n", "*PLASTIC", "keyword *PLASTIC is not supported by cushion run"},
       {"*FREQUENCY\n10\n", "*FREQUENCY", "keyword *FREQUENCY is not supported by cushion run"},
   };
   for (const auto& c : cases) {
     const std::string deck = cube_deck(10.0, 0.01, 2.0, 1.0, c.extra);
-    const CommandRun r = run_cushion("run " + quoted(write(dir, deck)) + " -o " + quoted(dir / "out"));
+    const CommandRun r = run_cushion("run " + quoted(write_text(dir, deck)) + " -o " + quoted(dir / "out"));
     cli_test::expect_input_error(
         r, {(dir / "model.inp").string() + ":" + std::to_string(line_of(deck, c.line_start)) + ": " + c.message});
     EXPECT_FALSE(fs::exists(dir / "out")) << cli_test::listed(dir / "out");
@@ -146,7 +136,7 @@ TEST(Deck, UnsupportedKeywordOrParameterIsOneLineWithFileAndLineAndNothingIsWrit
     ASSERT_NE(at, std::string::npos) << p.from;
     deck.replace(at, p.from.size(), p.to);
     const int line = line_of(deck, p.to.substr(0, p.to.find(',')));
-    const CommandRun r = run_cushion("run " + quoted(write(dir, deck)) + " -o " + quoted(dir / "out"));
+    const CommandRun r = run_cushion("run " + quoted(write_text(dir, deck)) + " -o " + quoted(dir / "out"));
     cli_test::expect_input_error(r, {(dir / "model.inp").string() + ":" + std::to_string(line) + ": " + p.message +
                                      " is not supported by cushion run"});
     EXPECT_FALSE(fs::exists(dir / "out")) << cli_test::listed(dir / "out");
@@ -162,7 +152,7 @@ TEST(Deck, ViscoDeckEqualsTheCaseFileOfTheSameModel) {
   replace("*SOLID SECTION", "*VISCOELASTIC, TIME=PRONY\n0.4, 0.4, 1.0\n*SOLID SECTION");
   replace("*STATIC\n0.25, 1.0", "*VISCO\n0.1, 1.0");
   replace("*STATIC\n0.5, 1.0", "*VISCO\n0.1, 2.0");
-  write(dir, deck);
+  write_text(dir, deck);
   std::ofstream(dir / "foam.json") << R"({"hyperfoam": {"terms": [{"mu_kPa": 10, "alpha": 10, "nu": 0}]},
     "viscoelastic": {"moduli": "long_term", "prony": [{"g": 0.4, "tau_s": 1.0}]}})";
   std::ofstream(dir / "case.json") << R"({"mesh": {"generate": {"type": "hex8", "box_mm": [0, 10, 0, 10, 0, 10], "elements": [1, 1, 1]}},
