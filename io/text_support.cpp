@@ -131,4 +131,11 @@ std::optional<double> parse_finite_number(const std::string& text) {
   return value;
 }
 
+std::string file_safe_name(const std::string& name) {
+  std::string out = name;
+  for (char& c : out)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
+  return out;
+}
+
 }  // namespace cushion::io

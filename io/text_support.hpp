@@ -34,6 +34,8 @@ std::optional<double> parse_finite_number(const std::string& text);
 
 /// Shortest decimal text that reads back to exactly `x` (std::to_chars round trip).
 std::string format_double(double x);
+/// File-name safe form of a set name: letters, digits, '-' and '_' kept, anything else '_'.
+std::string file_safe_name(const std::string& name);
 
 /// `x` formatted by a printf conversion for one double, e.g. format_with("%.4g", x) (at most 63 chars).
 std::string format_with(const char* printf_format, double x);

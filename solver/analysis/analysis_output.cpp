@@ -1,5 +1,7 @@
 #include "solver/analysis/analysis_output.hpp"
 
+#include "io/text_support.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <span>
@@ -97,20 +99,13 @@ std::vector<std::string> print_columns(const PrintRequest& r) {
   return columns;
 }
 
-/// File-name safe set name: letters, digits, '-' and '_' kept, anything else '_'.
-std::string file_safe(const std::string& name) {
-  std::string out = name;
-  for (char& c : out)
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
-  return out;
-}
 
 }  // namespace
 
 PrintTables::PrintTables(const CaseSpec& spec, const mesh::Mesh& mesh, const std::filesystem::path& dir) : mesh_(mesh) {
   for (const PrintRequest& r : spec.prints) {
     const bool node = r.kind == PrintRequest::Kind::node;
-    const std::string file = (node ? "node_print_" : "el_print_") + file_safe(r.set) + ".csv";
+    const std::string file = (node ? "node_print_" : "el_print_") + io::file_safe_name(r.set) + ".csv";
     tables_.push_back({&r, node ? &mesh.node_sets.at(r.set) : &mesh.element_sets.at(r.set),
                        std::make_unique<HistoryWriter>(
                            dir / file, print_columns(r),

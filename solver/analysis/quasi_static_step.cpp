@@ -6,6 +6,7 @@
 #include "solver/analysis/boundary.hpp"
 #include "solver/analysis/dynamic_step.hpp"
 #include "solver/analysis/increment_loop.hpp"
+#include "solver/analysis/frequency_step.hpp"
 #include "solver/analysis/steady_state_step.hpp"
 #include "solver/analysis/step.hpp"
 #include "solver/analysis/contact_contributor.hpp"
@@ -83,6 +84,7 @@ void QuasiStaticStep::run(AnalysisContext& ctx) {
 
 std::unique_ptr<Step> make_step(const StepSpec& spec) {
   if (spec.type == StepSpec::Type::steady_state) return make_steady_state_step(spec);
+  if (spec.type == StepSpec::Type::frequency) return make_frequency_step(spec);
   if (spec.type == StepSpec::Type::dynamic) return make_dynamic_step(spec);
   return std::make_unique<QuasiStaticStep>(spec);
 }

@@ -7,12 +7,16 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <fstream>
 #include <mutex>
 #include <thread>
 
 #include "io/input_error.hpp"
 #include "solver/analysis/contact_contributor.hpp"
+#include "solver/analysis/frequency_step.hpp"
+#include "io/text_support.hpp"
 #include "solver/dynamics/contact_linearisation.hpp"
+#include "solver/dynamics/modes.hpp"
 #include "solver/dynamics/sweep.hpp"
 
 namespace cushion::solver {
@@ -60,7 +64,7 @@ std::vector<Indenter> base_state_indenters(const AnalysisContext& ctx, const Ste
   const StepSpec* previous = nullptr;
   for (const StepSpec& s : ctx.spec().steps) {
     if (&s == &step) break;
-    if (s.type != StepSpec::Type::steady_state) previous = &s;
+    if (!s.perturbation()) previous = &s;
   }
   std::vector<Indenter> out;
   if (!previous) return out;
@@ -96,8 +100,10 @@ struct SweepSetup {
   std::vector<int> held_component;  ///< held DOFs in the excited component
   HarmonicModel model;              ///< all but the linearised system
   Measure measure = Measure::indenter_held;
-  std::vector<DofGroup> groups;     ///< {indenter, base}
+  std::vector<DofGroup> groups;     ///< {indenter, base} (empty with forces)
   NominalGeometry geometry;
+  bool force_mode = false;          ///< excited by harmonic forces (decks), no measure
+  std::vector<double> frequencies;  ///< [Hz] the step's, or placed around the resonances at run time
 
   const Indenter* measured() const { return measured_indenter < 0 ? nullptr : &indenters[measured_indenter]; }
   /// The indenter of a contact named by the key `key` (InputError if not of the base state).
@@ -150,7 +156,10 @@ void linearise_indenters(AnalysisContext& ctx, const StepSpec& step, SweepSetup&
 void resolve_supports(const AnalysisContext& ctx, const SteadyStateSpec& s, SweepSetup& setup) {
   const std::size_t n_all = 3 * ctx.mesh().num_nodes() + setup.indenters.size();
   Excitation& excitation = setup.excitation;
-  if (s.excitation_contact.empty())
+  if (setup.force_mode)
+    for (const HarmonicLoad& load : s.loads)
+      for (int n : set_nodes(ctx, load.set, load.key)) excitation.force.emplace_back(DofMap::dof(n, load.component), load.force);
+  else if (s.excitation_contact.empty())
     excitation.driven = component_dofs(set_nodes(ctx, s.excitation.set, s.excitation.key + ".set"), setup.component);
   else
     excitation.driven = {setup.indenter(s.excitation_contact, "").dof};
@@ -182,6 +191,7 @@ void resolve_supports(const AnalysisContext& ctx, const SteadyStateSpec& s, Swee
 /// The measured DOFs (an indenter, or a driven or held set), the kind of measure, the DOF groups
 /// {indenter, base} and the nominal geometry.
 void resolve_measure(const AnalysisContext& ctx, const SteadyStateSpec& s, SweepSetup& setup) {
+  if (setup.force_mode) return;
   std::vector<int> measured;
   bool measure_driven = false;
   if (const Indenter* m = setup.measured()) {
@@ -212,6 +222,8 @@ SweepSetup resolve_excitation(AnalysisContext& ctx, const StepSpec& step, const 
   SweepSetup setup;
   setup.where = ctx.spec().file.string() + ": " + s.key;
   setup.component = s.excitation.dofs[0] ? 0 : s.excitation.dofs[1] ? 1 : 2;
+  setup.force_mode = !s.loads.empty();
+  setup.frequencies = s.frequencies;
   setup.indenters = base_state_indenters(ctx, step);
   assign_roles(s, setup);
   linearise_indenters(ctx, step, setup);
@@ -220,23 +232,29 @@ SweepSetup resolve_excitation(AnalysisContext& ctx, const StepSpec& step, const 
   return setup;
 }
 
-/// The model linearised about the carried (committed) state; AnalysisError if it cannot be.
-std::unique_ptr<LinearisedSystem> linearise(const AnalysisContext& ctx, const StepSpec& step,
-                                            const Assembler& assembler) {
-  const ModelState& model = ctx.model();
+/// The frequencies of resonance_points: the natural frequencies of the free DOFs (neither driven nor held)
+/// place them (dynamics::frequency_points).
+std::vector<double> resonance_frequencies(const StepSpec& step, const SweepSetup& setup) {
+  const ResonancePoints& p = *step.steady_state.resonance_points;
+  const LinearisedSystem& system = *setup.model.system;
+  std::vector<bool> prescribed = setup.held;
+  for (int d : setup.excitation.driven) prescribed[d] = true;
+  std::vector<int> free;
+  for (int d = 0; d < static_cast<int>(system.num_dofs()); ++d)
+    if (!prescribed[d]) free.push_back(d);
   try {
-    auto points = base_point_states(assembler, model.material, model.u,
-                                    step.steady_state.base_stress);
-    return std::make_unique<LinearisedSystem>(ctx.mesh(), assembler.sections(), std::move(points), model.u);
-  } catch (const std::runtime_error& e) {
-    throw AnalysisError("step '" + step.name + "': cannot linearise the base state: " + e.what());
+    const std::vector<double> fn =
+        natural_frequencies(system.long_term_stiffness(), system.mass(), free, static_cast<int>(free.size()));
+    return frequency_points(p.low, p.high, p.points, p.bias, fn);
+  } catch (const std::invalid_argument& e) {
+    throw AnalysisError("step '" + step.name + "': the resonances that place the frequencies: " + e.what());
   }
 }
 
 /// Logs the step's set-up: base state, damping, linearisation time [s] and the indenters.
 void log_setup(AnalysisContext& ctx, const StepSpec& step, const SweepSetup& setup, double seconds) {
   const SteadyStateSpec& s = step.steady_state;
-  ctx.log() << "step '" << step.name << "' (steady_state, " << s.frequencies.size() << " frequencies, "
+  ctx.log() << "step '" << step.name << "' (steady_state, " << setup.frequencies.size() << " frequencies, "
             << (s.base_stress == BaseStress::relaxed ? "relaxed" : "as-left") << " base stress, " << describe_damping(s) << ") about t = "
             << ctx.model().time << " s; linearisation " << seconds << " s\n";
   for (const Indenter& i : setup.indenters)
@@ -278,22 +296,28 @@ void solve_share(unsigned t, AnalysisContext& ctx, const StepSpec& step, const S
   try {
     SteadyStateSolver solver(setup.model, s.damping, setup.excitation, setup.groups,
                              SolveMethod{s.iterative, s.gmres_tolerance});
-    for (std::size_t k = t; k < s.frequencies.size(); k += out.threads) {
+    for (std::size_t k = t; k < setup.frequencies.size(); k += out.threads) {
       {
         const std::lock_guard<std::mutex> lock(shared.lock);
         if (shared.failure) return;
       }
-      const double f = s.frequencies[k], U = drive_amplitude(s, f);
+      const double f = setup.frequencies[k], U = setup.force_mode ? 1.0 : drive_amplitude(s, f);
       const auto f0 = std::chrono::steady_clock::now();
       const int iterations = solver.stats().iterations;
       out.responses[k] = solver.solve(f, U);
       out.solve_time[k] = std::chrono::duration<double>(std::chrono::steady_clock::now() - f0).count();
-      const SweepRow row = make_row(out.responses[k], setup.measure, setup.geometry);
       char line[256];
-      std::snprintf(line, sizeof line,
-                    "%-10s f = %8.4g Hz  U = %.4e mm  |E*| = %.5g kPa  phase = %7.3f deg  (%.2f s, %d iterations)",
-                    step.name.c_str(), f, U, 1e3 * std::abs(row.modulus), std::arg(row.stiffness) * 180.0 / M_PI,
-                    out.solve_time[k], solver.stats().iterations - iterations);
+      if (setup.force_mode) {
+        std::snprintf(line, sizeof line, "%-10s f = %10.6g Hz  max |u| = %.5e mm  (%.2f s, %d iterations)",
+                      step.name.c_str(), f, out.responses[k].u.cwiseAbs().maxCoeff(), out.solve_time[k],
+                      solver.stats().iterations - iterations);
+      } else {
+        const SweepRow row = make_row(out.responses[k], setup.measure, setup.geometry);
+        std::snprintf(line, sizeof line,
+                      "%-10s f = %8.4g Hz  U = %.4e mm  |E*| = %.5g kPa  phase = %7.3f deg  (%.2f s, %d iterations)",
+                      step.name.c_str(), f, U, 1e3 * std::abs(row.modulus), std::arg(row.stiffness) * 180.0 / M_PI,
+                      out.solve_time[k], solver.stats().iterations - iterations);
+      }
       const std::lock_guard<std::mutex> lock(shared.lock);
       ctx.log() << "  " << line << "\n";
       ctx.report_progress(line);
@@ -315,7 +339,7 @@ void solve_share(unsigned t, AnalysisContext& ctx, const StepSpec& step, const S
 /// The sweep: frequency k on thread k % threads (up to 2). A singular dynamic matrix is an
 /// AnalysisError, an invalid excitation an InputError (nothing is written then).
 SweepResult sweep(AnalysisContext& ctx, const StepSpec& step, const SweepSetup& setup) {
-  const std::size_t nf = step.steady_state.frequencies.size();
+  const std::size_t nf = setup.frequencies.size();
   SharedSweep shared;
   shared.result.threads =
       static_cast<unsigned>(std::min<std::size_t>({2, nf, std::max(1u, std::thread::hardware_concurrency())}));
@@ -369,11 +393,38 @@ std::vector<std::string> sweep_comments(const AnalysisContext& ctx, const StepSp
 
 /// Writes <step>_sweep.csv and, if output.vtk, the frames of <step>_sweep.pvd (time = frequency [Hz], on
 /// the deformed base state: write_frequency_frame).
+/// <step>_node_print_<set>.csv of a deck's *NODE PRINT: the complex displacement amplitudes of the set's
+/// nodes at every frequency.
+void write_prints(const AnalysisContext& ctx, const StepSpec& step, const SweepResult& result,
+                  const std::filesystem::path& dir) {
+  const mesh::Mesh& mesh = ctx.mesh();
+  for (const std::string& set : step.steady_state.prints) {
+    const std::filesystem::path file = dir / (step.name + "_node_print_" + io::file_safe_name(set) + ".csv");
+    std::ofstream out(file);
+    out << "# cushion run " << ctx.spec().file.string() << ": *NODE PRINT of set " << set << " in steady-state step "
+        << step.name << ": displacement amplitude u^ [mm], u(t) = Re(u^ exp(i 2 pi f t))\n"
+        << "frequency_Hz,node,U1_re_mm,U1_im_mm,U2_re_mm,U2_im_mm,U3_re_mm,U3_im_mm\n";
+    for (const FrequencyResponse& r : result.responses)
+      for (int n : mesh.node_sets.at(set)) {
+        out << io::format_double(r.frequency) << "," << (mesh.node_labels.empty() ? n + 1 : mesh.node_labels[n]);
+        for (int c = 0; c < 3; ++c) {
+          const std::complex<double> u = r.u(3 * n + c);
+          out << "," << io::format_double(u.real()) << "," << io::format_double(u.imag());
+        }
+        out << "\n";
+      }
+    if (!out) throw std::runtime_error(file.string() + ": cannot write");
+  }
+}
+
 void write_sweep(AnalysisContext& ctx, const StepSpec& step, const SweepSetup& setup, const SweepResult& result) {
-  std::vector<SweepRow> rows;
-  for (const auto& r : result.responses) rows.push_back(make_row(r, setup.measure, setup.geometry));
   const std::filesystem::path dir = ctx.output().pvd_file().parent_path();
-  write_sweep_csv(dir / (step.name + "_sweep.csv"), rows, sweep_comments(ctx, step, setup));
+  write_prints(ctx, step, result, dir);
+  if (!setup.force_mode) {
+    std::vector<SweepRow> rows;
+    for (const auto& r : result.responses) rows.push_back(make_row(r, setup.measure, setup.geometry));
+    write_sweep_csv(dir / (step.name + "_sweep.csv"), rows, sweep_comments(ctx, step, setup));
+  }
   if (step.steady_state.vtk) {
     ResultSeries series(dir, step.name + "_sweep");
     const LinearisedSystem& system = *setup.model.system;
@@ -405,8 +456,10 @@ void SteadyStateStep::run(AnalysisContext& ctx) {
   SweepSetup setup = resolve_excitation(ctx, spec_, assembler);
   const auto t0 = std::chrono::steady_clock::now();
   auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
-  const std::unique_ptr<LinearisedSystem> linearised = linearise(ctx, spec_, assembler);
+  const std::unique_ptr<LinearisedSystem> linearised =
+      linearise_base_state(ctx, spec_, assembler, spec_.steady_state.base_stress);
   setup.model.system = linearised.get();
+  if (spec_.steady_state.resonance_points) setup.frequencies = resonance_frequencies(spec_, setup);
   log_setup(ctx, spec_, setup, seconds());
   const SweepResult result = sweep(ctx, spec_, setup);
   write_sweep(ctx, spec_, setup, result);

@@ -57,10 +57,11 @@ void check_steady_state_sets(const LoadedCase& c, const SteadyStateSpec& s) {
 /// Dynamic and steady-state steps need the material's mass density.
 void check_density(const LoadedCase& c, const StepSpec& step) {
   if (c.material.spec.density > 0.0) return;
-  const bool dynamic = step.type == StepSpec::Type::dynamic;
-  if (!dynamic && step.type != StepSpec::Type::steady_state) return;
-  const std::string& key = dynamic ? step.dynamic.key : step.steady_state.key;
-  throw InputError(c.spec.file.string() + ": " + key + ": a " + (dynamic ? "dynamic" : "steady_state") +
+  const bool dynamic = step.type == StepSpec::Type::dynamic, frequency = step.type == StepSpec::Type::frequency;
+  if (!dynamic && !step.perturbation()) return;
+  const std::string& key = dynamic ? step.dynamic.key : frequency ? step.frequency.key : step.steady_state.key;
+  throw InputError(c.spec.file.string() + ": " + key + ": a " +
+                   (dynamic ? "dynamic" : frequency ? "frequency" : "steady_state") +
                    " step needs the mass density of material \"" + c.material.spec.name + "\" (give density_kg_m3 in " +
                    c.spec.material_file.string() + ")");
 }

@@ -243,7 +243,7 @@ struct OutputSpec {
 
 struct StepSpec {
   std::string name;
-  enum class Type { static_, visco, steady_state, dynamic } type = Type::static_;
+  enum class Type { static_, visco, steady_state, dynamic, frequency } type = Type::static_;
   bool long_term = false;     ///< static only: long-term (relaxed) response
   double period = 0.0;        ///< time period [s]
   IncrementSpec increment;
@@ -255,6 +255,9 @@ struct StepSpec {
   OutputSpec output;
   SteadyStateSpec steady_state;      ///< type steady_state only (steady_state_spec.hpp)
   DynamicSpec dynamic;               ///< type dynamic only
+  FrequencySpec frequency;           ///< type frequency only (decks: *FREQUENCY)
+  /// A linear perturbation step (steady_state, frequency): it leaves the carried state unchanged.
+  bool perturbation() const { return type == Type::steady_state || type == Type::frequency; }
 };
 
 struct SolverSpec {

@@ -35,6 +35,7 @@
 /// empty, the measured set has a node driven or held in the excitation's dof, the material has a
 /// mass density.
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -67,6 +68,24 @@ struct IndenterMotion {
   std::string key;      ///< "steps[2].steady_state.indenters[0]", for messages
 };
 
+/// A harmonic nodal force of a steady-state step (decks: *CLOAD inside *STEADY STATE DYNAMICS): every node
+/// of `set` gets the real amplitude `force` [N] in `component` (0, 1, 2), in phase with the others.
+struct HarmonicLoad {
+  std::string set;
+  int component = 0;
+  double force = 0.0;  ///< [N] per node
+  std::string key;     ///< "deck.inp:42", for messages
+};
+
+/// Frequencies placed around the resonances (decks: modal *STEADY STATE DYNAMICS, as ABAQUS/CalculiX
+/// place them): the natural frequencies in [low, high] split the range into intervals, each interval
+/// gets `points` frequencies clustered towards its ends by `bias` (dynamics::frequency_points).
+struct ResonancePoints {
+  double low = 0.0, high = 0.0;  ///< [Hz]
+  int points = 20;               ///< per interval, >= 2
+  double bias = 3.0;             ///< >= 1
+};
+
 /// The "steady_state" object of a step.
 struct SteadyStateSpec {
   std::vector<double> frequencies;  ///< [Hz], > 0, in sweep order
@@ -89,8 +108,25 @@ struct SteadyStateSpec {
   bool iterative = true;            ///< GMRES + real Cholesky preconditioner (else complex LU)
   double gmres_tolerance = 1e-10;   ///< [-]
   std::string key;                  ///< "steps[1].steady_state"
+  /// Decks only: harmonic forces instead of a driven set (then no excitation set or contact and no
+  /// measure; the response is reported by `prints`), node sets whose complex displacements are written
+  /// per frequency (<step>_node_print_<set>.csv), and frequencies placed at run time around the
+  /// resonances (then `frequencies` is empty).
+  std::vector<HarmonicLoad> loads;
+  std::vector<std::string> prints;
+  std::optional<ResonancePoints> resonance_points;
   /// The excitation's component: 0, 1, 2 for x, y, z.
   int component() const { return excitation.dofs[0] ? 0 : excitation.dofs[1] ? 1 : 2; }
+};
+
+/// A "frequency" step (decks: *FREQUENCY): the lowest natural frequencies of the model linearised about
+/// the carried state (long-term tangent, consistent mass), with the DOFs of the step's boundary
+/// conditions held; written to <step>_frequencies.csv. A linear perturbation: the state is unchanged.
+struct FrequencySpec {
+  int modes = 10;              ///< how many, >= 1
+  double low = 0.0;            ///< [Hz] report only frequencies >= low
+  double high = 0.0;           ///< [Hz] and <= high (0: no upper bound)
+  std::string key;             ///< "deck.inp:12", for messages
 };
 
 }  // namespace cushion::solver

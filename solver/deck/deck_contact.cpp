@@ -301,7 +301,7 @@ void finish_contacts(State& s) {
     s.out.mesh.node_sets[set] = face_node_set(s.out.mesh, s.out.mesh.surfaces.at(pair.slave));
     for (std::size_t i = 0; i < s.out.spec.steps.size(); ++i) {
       StepSpec& step = s.out.spec.steps[i];
-      if (step.type == StepSpec::Type::steady_state) continue;
+      if (step.perturbation()) continue;
       const Motion& m = motions[i][body_of_pair[k]];
       ContactSpec c;
       c.name = pair.master;

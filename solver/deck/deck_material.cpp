@@ -143,6 +143,21 @@ void elastic(State& s, const Block& b) {
   m.elastic = b.keyword;
 }
 
+void damping(State& s, const Block& b) {
+  check_parameters(b, {"ALPHA", "BETA", "STRUCTURAL"});
+  DeckMaterial& m = current(s, b);
+  if (m.damping) fail(b, b.keyword, "material " + m.name + " already has a *DAMPING");
+  auto value = [&](const char* key) {
+    const auto v = parameter(b, key);
+    if (!v) return 0.0;
+    const double x = number(b, b.keyword, *v);
+    if (!(x >= 0.0)) fail(b, b.keyword, std::string(key) + " must be >= 0");
+    return x;
+  };
+  m.damping_values = {value("ALPHA"), value("BETA"), value("STRUCTURAL")};  // [1/s], [s], [-]
+  m.damping = b.keyword;
+}
+
 void viscoelastic(State& s, const Block& b) {
   check_parameters(b, {"TIME"});
   DeckMaterial& m = current(s, b);
@@ -202,6 +217,9 @@ void finish_material(State& s) {
                              "initial shear and bulk moduli: identical at small strain (linear perturbation steps, "
                              "small loads), a hyperelastic solid at large strain");
   if (!m.has_base) throw InputError(where(m.defined) + ": *MATERIAL: " + m.name + " has no *HYPERFOAM, *HYPERELASTIC or *ELASTIC");
+  // *DAMPING of the material: the damping of its steady-state steps (Rayleigh alpha M + beta K, structural i s K).
+  for (StepSpec& step : s.out.spec.steps)
+    if (step.type == StepSpec::Type::steady_state) step.steady_state.damping = m.damping_values;
   s.out.material = material::build_material(m.spec, where(m.defined) + ": *MATERIAL " + m.name);
 }
 

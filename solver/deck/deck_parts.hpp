@@ -45,6 +45,8 @@ struct DeckMaterial {
   bool has_prony = false;   ///< a *VISCOELASTIC was read
   std::optional<Line> moduli;  ///< where MODULI= was given (with *VISCOELASTIC only)
   std::optional<Line> elastic; ///< where *ELASTIC gave the base (read as its small-strain neo-Hooke)
+  std::optional<Line> damping; ///< where *DAMPING gave `damping` (used by steady-state steps)
+  Damping damping_values;      ///< *DAMPING ALPHA (mass), BETA (stiffness), STRUCTURAL
 };
 
 /// Everything read so far.
@@ -104,6 +106,7 @@ void solid_section(State& s, const Block& b);
 /// The case's material after every block: the one material of the sections, covering every element.
 void finish_material(State& s);
 void elastic(State& s, const Block& b);
+void damping(State& s, const Block& b);
 
 // Handlers (deck_contact.cpp).
 void rigid_body(State& s, const Block& b);
@@ -124,6 +127,8 @@ void dload(State& s, const Block& b);
 void step(State& s, const Block& b);
 void static_procedure(State& s, const Block& b);
 void visco_procedure(State& s, const Block& b);
+void frequency_procedure(State& s, const Block& b);
+void steady_state_procedure(State& s, const Block& b);
 void end_step(State& s, const Block& b);
 void node_print(State& s, const Block& b);
 void el_print(State& s, const Block& b);

@@ -131,7 +131,9 @@ const std::map<std::string, Handler>& handlers() {
       {"NODE FILE", deck::result_file},   {"EL FILE", deck::result_file},   {"ELASTIC", deck::elastic},
       {"RIGID BODY", deck::rigid_body},   {"SURFACE INTERACTION", deck::surface_interaction},
       {"SURFACE BEHAVIOR", deck::surface_behavior}, {"FRICTION", deck::friction},
-      {"CONTACT PAIR", deck::contact_pair}, {"TIME POINTS", deck::time_points}};
+      {"CONTACT PAIR", deck::contact_pair}, {"TIME POINTS", deck::time_points},
+      {"FREQUENCY", deck::frequency_procedure}, {"STEADY STATE DYNAMICS", deck::steady_state_procedure},
+      {"DAMPING", deck::damping}};
   return table;
 }
 

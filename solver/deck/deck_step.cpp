@@ -9,6 +9,7 @@
 #include "io/input_error.hpp"
 #include "io/text_support.hpp"
 #include "solver/deck/deck_parts.hpp"
+#include "solver/dynamics/modes.hpp"
 
 namespace cushion::solver::deck {
 
@@ -99,7 +100,8 @@ std::vector<std::string> print_variables(State& s, const Block& b, const std::ve
       if (std::find(supported.begin(), supported.end(), v) != supported.end()) out.push_back(v);
       else if (!v.empty())
         s.out.warnings.push_back(where(line) + ": *" + b.name + ": output variable " + f + " skipped (cushion prints " +
-                                 (supported.size() > 1 ? "U and RF" : "S") + " here; frames hold more)");
+                                 (supported.size() > 1 ? supported[0] + " and " + supported[1] : supported[0]) +
+                                 " here; frames hold more)");
     }
   return out;
 }
@@ -181,13 +183,29 @@ void boundary(State& s, const Block& b) {
     if (last < first) fail(b, line, "last dof before first dof");
     bc.value = f.size() > 3 ? number(b, line, f[3]) * s.units.length : 0.0;
     if (bc.value != 0.0 && !s.step) fail(b, line, "a non-zero value is only allowed inside a *STEP");
+    if (bc.value != 0.0 && s.procedure && s.out.spec.steps[*s.step].perturbation())
+      fail(b, line, "a prescribed motion in a linear perturbation step is not supported by cushion run (give the "
+                    "excitation as *CLOAD)");
     for (int c = first; c <= last; ++c) put_boundary(s, bc, c);
   }
 }
 
+/// *CLOAD in a *STEADY STATE DYNAMICS step: harmonic forces of that step only (a linear perturbation's loads
+/// are not carried to later steps, as in ABAQUS).
+void harmonic_cload(State& s, const Block& b, SteadyStateSpec& ss) {
+  check_parameters(b, {});
+  for (const Line& line : b.data) {
+    const std::vector<std::string> f = mesh::inp_fields(line.text);
+    if (f.size() != 3) fail(b, line, "expected 'node or set, dof, magnitude'");
+    ss.loads.push_back({node_target(s, b, line, f[0]), component(b, line, f[1]), number(b, line, f[2]) * s.units.force,
+                        where(line)});
+  }
+}
+
 void cload(State& s, const Block& b) {
+  StepSpec& step = open_step(s, b);
+  if (s.procedure && step.type == StepSpec::Type::steady_state) return harmonic_cload(s, b, step.steady_state);
   check_parameters(b, {"OP", "AMPLITUDE"});
-  open_step(s, b);
   if (op_new(s, b)) s.loads.clear();
   const std::optional<std::string> amp = amplitude_parameter(s, b);
   for (const Line& line : b.data) {
@@ -273,10 +291,71 @@ void visco_procedure(State& s, const Block& b) {
   open_step(s, b).increment.fixed = parameter(b, "DIRECT").has_value();
 }
 
+void frequency_procedure(State& s, const Block& b) {
+  check_parameters(b, {"STORAGE", "SOLVER"});
+  StepSpec& step = open_step(s, b);
+  if (s.procedure) fail(b, b.keyword, "the step already has its procedure");
+  s.procedure = true;
+  step.type = StepSpec::Type::frequency;
+  step.frequency.key = where(b.keyword);
+  // number of frequencies, lower and upper bound of the range of interest [Hz] (CalculiX; the shift is not used).
+  if (b.data.size() != 1) fail(b, b.keyword, "expected one data line 'number of frequencies[, low, high]'");
+  const Line& line = b.data.front();
+  std::vector<std::string> f = mesh::inp_fields(line.text);
+  f.resize(std::max<std::size_t>(f.size(), 3));
+  step.frequency.modes = integer(b, line, f[0]);
+  if (step.frequency.modes < 1) fail(b, line, "the number of frequencies must be >= 1");
+  if (!f[1].empty()) step.frequency.low = number(b, line, f[1]);
+  if (!f[2].empty()) step.frequency.high = number(b, line, f[2]);
+  if (!(step.frequency.low >= 0.0) || !(step.frequency.high >= 0.0) ||
+      (step.frequency.high > 0.0 && step.frequency.high < step.frequency.low))
+    fail(b, line, "need 0 <= low <= high (high 0: no upper bound)");
+}
+
+void steady_state_procedure(State& s, const Block& b) {
+  check_parameters(b, {"DIRECT"});
+  StepSpec& step = open_step(s, b);
+  if (s.procedure) fail(b, b.keyword, "the step already has its procedure");
+  s.procedure = true;
+  step.type = StepSpec::Type::steady_state;
+  SteadyStateSpec& ss = step.steady_state;
+  ss.key = where(b.keyword);
+  // low, high [Hz], points (default 20), bias (default 3 around resonances, 1 for DIRECT: ABAQUS).
+  if (b.data.size() != 1) fail(b, b.keyword, "expected one data line 'low, high[, points, bias]' (one range)");
+  const Line& line = b.data.front();
+  std::vector<std::string> f = mesh::inp_fields(line.text);
+  if (f.size() < 2 || f.size() > 4) fail(b, line, "expected 'low, high[, points, bias]'");
+  f.resize(4);
+  const bool direct = parameter(b, "DIRECT").has_value();
+  ResonancePoints p{number(b, line, f[0]), number(b, line, f[1]), f[2].empty() ? 20 : integer(b, line, f[2]),
+                    f[3].empty() ? (direct ? 1.0 : 3.0) : number(b, line, f[3])};
+  if (!(p.low > 0.0) || !(p.high >= p.low) || p.points < 2 || p.points > 10000 || !(p.bias >= 1.0))
+    fail(b, line, "need 0 < low <= high [Hz], 2 <= points <= 10000, bias >= 1");
+  if (direct) {
+    ss.frequencies = dynamics::frequency_points(p.low, p.high, p.points, p.bias, {});
+    return;
+  }
+  const bool after_frequency = std::any_of(s.out.spec.steps.begin(), s.out.spec.steps.end() - 1,
+                                           [](const StepSpec& o) { return o.type == StepSpec::Type::frequency; });
+  if (!after_frequency)
+    fail(b, b.keyword, "a modal steady state needs a preceding *FREQUENCY step (or give DIRECT)");
+  s.out.warnings.push_back(where(b.keyword) + ": *STEADY STATE DYNAMICS (modal) solved directly: cushion solves the "
+                                              "full system at each frequency (no modal truncation), the frequencies "
+                                              "placed around the resonances as CalculiX places them");
+  ss.resonance_points = p;
+}
+
 void end_step(State& s, const Block& b) {
   check_parameters(b, {});
   StepSpec& step = open_step(s, b);
-  if (!s.procedure) fail(b, b.keyword, "the step has no procedure (*STATIC or *VISCO)");
+  if (!s.procedure)
+    fail(b, b.keyword, "the step has no procedure (*STATIC, *VISCO, *FREQUENCY or *STEADY STATE DYNAMICS)");
+  if (step.type == StepSpec::Type::steady_state) {
+    SteadyStateSpec& ss = step.steady_state;
+    if (ss.loads.empty()) fail(b, b.keyword, "the *STEADY STATE DYNAMICS step has no *CLOAD (its excitation)");
+    for (const BoundarySpec& bc : s.boundary) ss.held.push_back({bc.set, bc.dofs, bc.key});
+    ss.vtk = true;
+  }
   step.boundary = s.boundary;
   step.loads = s.loads;
   step.pressures = s.pressures;
@@ -286,9 +365,15 @@ void end_step(State& s, const Block& b) {
 }
 
 void node_print(State& s, const Block& b) {
-  open_step(s, b);
+  StepSpec& step = open_step(s, b);
   output_parameters(s, b, "NSET");
   const std::string set = node_target(s, b, b.keyword, required_parameter(b, "NSET"));
+  if (s.procedure && step.type == StepSpec::Type::steady_state) {  // complex U per frequency
+    print_variables(s, b, {"U"});
+    if (std::find(step.steady_state.prints.begin(), step.steady_state.prints.end(), set) == step.steady_state.prints.end())
+      step.steady_state.prints.push_back(set);
+    return;
+  }
   add_print(s, PrintRequest::Kind::node, set, print_variables(s, b, {"U", "RF"}));
 }
 

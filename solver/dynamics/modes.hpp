@@ -14,4 +14,13 @@ namespace cushion::solver::dynamics {
 std::vector<double> natural_frequencies(const SparseMatrix& K, const SparseMatrix& M, const std::vector<int>& free,
                                         int count);
 
+/// Frequencies [Hz] of a steady-state sweep over [low, high] spread as ABAQUS and CalculiX document it
+/// for *STEADY STATE DYNAMICS: the `resonances` [Hz] strictly inside the range split it into intervals
+/// (values closer than 1e-5 Hz count once); each interval [a, b] gets `points` (>= 2) frequencies
+///   f_j = (a + b)/2 + (b - a)/2 sign(y) |y|^(1/bias),  y = -1 + 2 j/(points - 1),  j = 0 .. points - 1,
+/// consecutive intervals sharing their end point; bias = 1 spaces them evenly, bias > 1 clusters them at
+/// the interval ends (the resonances). low == high gives one frequency. std::invalid_argument on
+/// low <= 0, high < low, points < 2 or bias < 1.
+std::vector<double> frequency_points(double low, double high, int points, double bias, std::vector<double> resonances);
+
 }  // namespace cushion::solver::dynamics

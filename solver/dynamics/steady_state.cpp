@@ -81,7 +81,8 @@ SteadyStateSolver::SteadyStateSolver(HarmonicModel model, Damping damping, Excit
                                 "\" has no mass density (give density_kg_m3 in its material file)");
   if (damping_.rayleigh_alpha < 0.0 || damping_.rayleigh_beta < 0.0 || damping_.structural < 0.0)
     throw std::invalid_argument("steady-state: damping coefficients must be >= 0");
-  if (excitation.driven.empty()) throw std::invalid_argument("steady-state: no driven DOF");
+  if (excitation.driven.empty() && excitation.force.empty())
+    throw std::invalid_argument("steady-state: no driven DOF and no force");
   n_ = model_.system->num_dofs() + static_cast<std::size_t>(model_.extra_dofs);
   std::vector<int> role(n_, 0);  // 0 free, 1 driven, 2 held
   auto mark = [&](const std::vector<int>& dofs, int r) {
@@ -97,6 +98,13 @@ SteadyStateSolver::SteadyStateSolver(HarmonicModel model, Damping damping, Excit
   unit_c_.setZero(static_cast<Eigen::Index>(constrained_.size()));
   for (std::size_t k = 0; k < constrained_.size(); ++k)
     if (role[constrained_[k]] == 1) unit_c_(static_cast<Eigen::Index>(k)) = 1.0;
+  std::vector<int> free_index(n_, -1);
+  for (std::size_t k = 0; k < free_.size(); ++k) free_index[free_[k]] = static_cast<int>(k);
+  unit_f_.setZero(static_cast<Eigen::Index>(free_.size()));
+  for (const auto& [d, f] : excitation.force) {
+    if (d < 0 || d >= static_cast<int>(n_)) throw std::invalid_argument("steady-state: force DOF out of range");
+    if (free_index[d] >= 0) unit_f_(free_index[d]) += f;
+  }
   for (const auto& g : groups_)
     for (int d : g.dofs)
       if (d < 0 || d >= static_cast<int>(n_)) throw std::invalid_argument("steady-state: group " + g.name + " DOF out of range");
@@ -141,7 +149,7 @@ FrequencyResponse SteadyStateSolver::solve(double frequency, cplx amplitude) {
   Dff.makeCompressed();
   const ComplexMatrix Dfc = Pf * D * ComplexMatrix(Pc.transpose());
   const Eigen::VectorXcd uc = amplitude * unit_c_;
-  const Eigen::VectorXcd b = -(Dfc * uc);
+  const Eigen::VectorXcd b = amplitude * unit_f_ - Dfc * uc;
   stats_.assembly_time += seconds_since(t0);
   Eigen::VectorXcd uf;
   if (!method_.iterative || !solve_iterative(Dff, b, uf)) {

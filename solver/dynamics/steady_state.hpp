@@ -39,9 +39,12 @@ struct HarmonicModel {
 };
 
 /// Prescribed DOFs: `driven` move with the excitation amplitude, `held` stay at zero; the rest are free.
+/// `force`: harmonic forces (DOF, force [N] per unit amplitude) on free DOFs, added to the right-hand
+/// side (D_ff u^_f = a F_f - D_fc u^_c); forces on prescribed DOFs move nothing and are ignored.
 struct Excitation {
   std::vector<int> driven;
   std::vector<int> held;
+  std::vector<std::pair<int, double>> force;
 };
 
 /// A named group of DOFs whose summed reaction and mean displacement are reported.
@@ -76,13 +79,14 @@ struct SolveStats {
 /// (damping_matrix), plus i s K_R(0).
 class SteadyStateSolver {
  public:
-  /// Throws std::invalid_argument on DOFs out of range, driven and held overlapping, no driven DOF,
+  /// Throws std::invalid_argument on DOFs out of range, driven and held overlapping, no driven DOF and no force,
   /// negative damping, or a missing mass (a section without density, message naming it).
   SteadyStateSolver(HarmonicModel model, Damping damping, Excitation excitation, std::vector<DofGroup> groups,
                     SolveMethod method = {});
   ~SteadyStateSolver();
 
-  /// Solves at `frequency` [Hz] (> 0, else std::invalid_argument) for a driven amplitude [mm].
+  /// Solves at `frequency` [Hz] (> 0, else std::invalid_argument) for an amplitude a: driven DOFs at
+  /// a [mm], forces a F [N].
   /// Throws SingularMatrixError at an undamped resonance.
   FrequencyResponse solve(double frequency, std::complex<double> amplitude);
 
@@ -101,6 +105,7 @@ class SteadyStateSolver {
   std::size_t n_ = 0;
   std::vector<int> free_, constrained_;
   Eigen::VectorXcd unit_c_;  ///< constrained amplitudes per unit driven amplitude (1 driven, 0 held)
+  Eigen::VectorXcd unit_f_;  ///< forces on the free DOFs per unit amplitude [N]
   SparseMatrix K0_, M_, Kx_;  ///< n x n
   SparseMatrix Pf_, Pc_;      ///< selection matrices (rows: free / constrained DOFs)
   ComplexLuSolver lu_;

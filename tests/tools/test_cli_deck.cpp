@@ -111,7 +111,7 @@ TEST(Deck, UnsupportedKeywordOrParameterIsOneLineWithFileAndLineAndNothingIsWrit
   } cases[] = {
       {"*EQUATION\n2\n5, 3, 1.0, 6, 3, -1.0\n", "*EQUATION", "keyword *EQUATION is not supported by cushion run"},
       {"*PLASTIC\n1.0, 0.0\n", "*PLASTIC", "keyword *PLASTIC is not supported by cushion run"},
-      {"*FREQUENCY\n10\n", "*FREQUENCY", "keyword *FREQUENCY is not supported by cushion run"},
+      {"*BUCKLE\n5\n", "*BUCKLE", "keyword *BUCKLE is not supported by cushion run"},
   };
   for (const auto& c : cases) {
     const std::string deck = cube_deck(10.0, 0.01, 2.0, 1.0, c.extra);
@@ -119,6 +119,28 @@ TEST(Deck, UnsupportedKeywordOrParameterIsOneLineWithFileAndLineAndNothingIsWrit
     cli_test::expect_input_error(
         r, {(dir / "model.inp").string() + ":" + std::to_string(line_of(deck, c.line_start)) + ": " + c.message});
     EXPECT_FALSE(fs::exists(dir / "out")) << cli_test::listed(dir / "out");
+  }
+  // Linear perturbation steps appended after the two static steps.
+  const struct {
+    std::string step, line_start, message;
+  } perturbations[] = {
+      {"*STEP\n*STEADY STATE DYNAMICS\n100, 200\n*CLOAD\n7, 3, 1\n*END STEP\n", "*STEADY STATE DYNAMICS",
+       "a modal steady state needs a preceding *FREQUENCY step (or give DIRECT)"},
+      {"*STEP\n*STEADY STATE DYNAMICS, DIRECT\n100, 200\n*END STEP\n", "*END STEP\n*STEP\n*STEADY",
+       "the *STEADY STATE DYNAMICS step has no *CLOAD"},
+      {"*STEP\n*STEADY STATE DYNAMICS, DIRECT\n100, 200\n*BOUNDARY\nTOP, 3, 3, 0.1\n*CLOAD\n7, 3, 1\n*END STEP\n",
+       "TOP, 3, 3, 0.1", "a prescribed motion in a linear perturbation step is not supported"},
+      {"*STEP\n*STEADY STATE DYNAMICS, DIRECT\n0, 200\n*CLOAD\n7, 3, 1\n*END STEP\n", "0, 200",
+       "need 0 < low <= high [Hz]"},
+      {"*STEP\n*FREQUENCY\n0\n*END STEP\n", "0\n*END STEP", "the number of frequencies must be >= 1"},
+  };
+  for (const auto& c : perturbations) {
+    const std::string deck = cube_deck(10.0, 0.01, 2.0, 1.0) + c.step;
+    const CommandRun r = run_cushion("run " + quoted(write_text(dir, deck)) + " -o " + quoted(dir / "out"));
+    int line = line_of(deck, c.line_start);
+    if (c.line_start.rfind("*END STEP\n", 0) == 0) line = line_of(deck, c.step) + 3;  // the appended step's *END STEP
+    cli_test::expect_input_error(r, {(dir / "model.inp").string() + ":" + std::to_string(line) + ": ", c.message});
+    EXPECT_FALSE(fs::exists(dir / "out")) << c.message;
   }
   // Parameters: of the step, of a material form, of a boundary condition.
   const std::string base = cube_deck(10.0, 0.01, 2.0, 1.0);
