@@ -11,6 +11,7 @@
 #include "solver/analysis/boundary.hpp"
 #include "solver/analysis/increment_loop.hpp"
 #include "solver/analysis/contact_contributor.hpp"
+#include "solver/analysis/pressure_contributor.hpp"
 #include "solver/dof_map.hpp"
 #include "solver/dynamics/linearised_system.hpp"
 #include "solver/dynamics/newmark.hpp"
@@ -62,10 +63,10 @@ class DynamicStepper final : public IncrementStepper {
     a.dt_material = dt;
     for (int d : dofs.constrained_dofs())
       a.prescribed_increment = std::max(a.prescribed_increment, std::abs(p_.u(d) - k_.u(d)));
-    a.problem = std::make_unique<EquilibriumProblem>(assembler_, model_.material, k_.u, p_.u,
-                                                     Eigen::VectorXd::Zero(k_.u.size()), dt);
+    a.problem = std::make_unique<EquilibriumProblem>(assembler_, model_.material, k_.u, p_.u, boundary_.loads(t_end), dt);
     a.problem->add_term(newmark_.inertia_term(*update_));
     a.x = dofs.gather_free(update_->predictor());
+    a.fallback_x = dofs.gather_free(p_.u);  // the last displacement with the prescribed motion applied
     return a;
   }
 
@@ -143,7 +144,8 @@ void DynamicStep::run(AnalysisContext& ctx) {
 
   std::vector<std::shared_ptr<ResidualContributor>> contributors;
   for (auto& c : step_contacts(ctx, spec_, dofs)) contributors.push_back(std::move(c));
-  const StepBoundary boundary(ctx.mesh(), spec_, ctx.spec().amplitudes, t0, model.u);
+  if (auto pressure = step_pressures(ctx, spec_, dofs)) contributors.push_back(std::move(pressure));
+  const StepBoundary boundary(ctx.mesh(), spec_, ctx.spec().amplitudes, t0, model.u, model.f_load);
 
   // Start kinematics: velocity carried from a preceding dynamic step or zero, acceleration from
   // equilibrium at the start.
@@ -152,7 +154,7 @@ void DynamicStep::run(AnalysisContext& ctx) {
   k.u = model.u;  // a jump of a prescribed value at the step start is applied by the first increment
   Eigen::VectorXd f_int_n, hht_force;
   {
-    EquilibriumProblem start(assembler, model.material, model.u, model.u, zero, 0.0);
+    EquilibriumProblem start(assembler, model.material, model.u, model.u, boundary.loads(0.0), 0.0);
     const IncrementInfo info{&spec_, t0, t0, 0.0};
     for (auto& c : contributors) c->begin_increment(info, start);
     Eigen::VectorXd r;
@@ -185,6 +187,7 @@ void DynamicStep::run(AnalysisContext& ctx) {
   const IncrementControl control =
       run_increment_loop(ctx, spec_, system, contributors, boundary.corner_times(), stepper);
   model.constrained = mask;
+  model.f_load = boundary.loads(period);
   ctx.log() << "step '" << spec_.name << "' done: " << control.increments() << " increments, " << control.cutbacks()
           << " cut-backs, kinetic energy " << stepper.energy().kinetic << " mJ, energy balance "
           << stepper.energy().balance() << " mJ\n";

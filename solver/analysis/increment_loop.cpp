@@ -75,6 +75,12 @@ NewtonResult solve_attempt(IncrementAttempt& attempt, LinearSolver& linear, Newt
   auto log = [&](const NewtonIterate& it) { ctx.log() << "    " << format_iterate(it) << "\n"; };
   // solve_newton reports a singular tangent as an outcome and drops `factor` on any failure.
   result = solve_newton(timed_problem, linear, x, options, log, &factor);
+  if (!result.converged() && result.outcome == NewtonOutcome::failed && result.iterations == 0 && attempt.fallback_x) {
+    ctx.log() << "    " << result.message << "; again from the fallback start\n";
+    x = *attempt.fallback_x;
+    options.prescribed_increment = attempt.prescribed_increment + (x.size() ? (x - x_start).cwiseAbs().maxCoeff() : 0.0);
+    result = solve_newton(timed_problem, linear, x, options, log, &factor);
+  }
   // Augmented-Lagrangian (Uzawa) updates of the contributors: solve again until none changes.
   for (bool again = result.converged(); again;) {
     again = false;

@@ -6,6 +6,7 @@
 /// contributors and advances the AnalysisContext, or reverts them and cuts the increment back.
 /// It never accepts an unconverged increment: after the allowed cut-backs it throws AnalysisError.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,9 @@ struct IncrementAttempt {
   double prescribed_increment = 0.0; ///< largest change of a constrained DOF over the increment [mm]
   double dt_material = 0.0;          ///< time increment the materials see [s]
   bool predict = false;              ///< run EquilibriumProblem::predict before Newton
+  /// A second start iterate [mm], tried once when a material point fails at x before any correction (e.g.
+  /// the Newmark predictor of a sudden load overshooting; dynamic steps retry from the last displacement).
+  std::optional<Eigen::VectorXd> fallback_x;
 };
 
 /// What a time-stepping step adds to the shared loop.

@@ -249,9 +249,9 @@ struct StepSpec {
   IncrementSpec increment;
   std::vector<BoundarySpec> boundary;
   std::vector<ContactSpec> contact;  ///< rigid indenters (contact_spec.hpp)
-  std::vector<LoadSpec> loads;       ///< concentrated forces, static/visco only (decks); the complete
+  std::vector<LoadSpec> loads;       ///< concentrated forces, static/visco/dynamic (decks); the complete
                                      ///< list: a load of the previous step not listed ramps to 0
-  std::vector<PressureSpec> pressures;  ///< face pressures, static/visco only (decks): the complete list
+  std::vector<PressureSpec> pressures;  ///< face pressures, static/visco/dynamic (decks): the complete list
   OutputSpec output;
   SteadyStateSpec steady_state;      ///< type steady_state only (steady_state_spec.hpp)
   DynamicSpec dynamic;               ///< type dynamic only

@@ -220,6 +220,8 @@ void finish_material(State& s) {
   // *DAMPING of the material: the damping of its steady-state steps (Rayleigh alpha M + beta K, structural i s K).
   for (StepSpec& step : s.out.spec.steps)
     if (step.type == StepSpec::Type::steady_state) step.steady_state.damping = m.damping_values;
+    else if (step.type == StepSpec::Type::dynamic)
+      step.dynamic.damping = {m.damping_values.rayleigh_alpha, m.damping_values.rayleigh_beta, 0.0};
   s.out.material = material::build_material(m.spec, where(m.defined) + ": *MATERIAL " + m.name);
 }
 

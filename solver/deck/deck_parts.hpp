@@ -127,6 +127,7 @@ void dload(State& s, const Block& b);
 void step(State& s, const Block& b);
 void static_procedure(State& s, const Block& b);
 void visco_procedure(State& s, const Block& b);
+void dynamic_procedure(State& s, const Block& b);
 void frequency_procedure(State& s, const Block& b);
 void steady_state_procedure(State& s, const Block& b);
 void end_step(State& s, const Block& b);

@@ -132,7 +132,7 @@ const std::map<std::string, Handler>& handlers() {
       {"RIGID BODY", deck::rigid_body},   {"SURFACE INTERACTION", deck::surface_interaction},
       {"SURFACE BEHAVIOR", deck::surface_behavior}, {"FRICTION", deck::friction},
       {"CONTACT PAIR", deck::contact_pair}, {"TIME POINTS", deck::time_points},
-      {"FREQUENCY", deck::frequency_procedure}, {"STEADY STATE DYNAMICS", deck::steady_state_procedure},
+      {"FREQUENCY", deck::frequency_procedure}, {"DYNAMIC", deck::dynamic_procedure}, {"STEADY STATE DYNAMICS", deck::steady_state_procedure},
       {"DAMPING", deck::damping}};
   return table;
 }

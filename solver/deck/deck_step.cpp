@@ -291,6 +291,20 @@ void visco_procedure(State& s, const Block& b) {
   open_step(s, b).increment.fixed = parameter(b, "DIRECT").has_value();
 }
 
+void dynamic_procedure(State& s, const Block& b) {
+  check_parameters(b, {"DIRECT", "ALPHA"});
+  procedure(s, b, StepSpec::Type::dynamic);
+  StepSpec& step = open_step(s, b);
+  step.increment.fixed = parameter(b, "DIRECT").has_value();
+  DynamicSpec& d = step.dynamic;
+  d.key = where(b.keyword);
+  // HHT alpha (ABAQUS and CalculiX default -0.05), gamma = 1/2 - alpha, beta = (1 - alpha)^2 / 4.
+  d.hht_alpha = parameter(b, "ALPHA") ? number(b, b.keyword, *parameter(b, "ALPHA")) : -0.05;
+  if (!(d.hht_alpha >= -1.0 / 3.0 && d.hht_alpha <= 0.0)) fail(b, b.keyword, "ALPHA must be in [-1/3, 0]");
+  d.gamma = 0.5 * (1.0 - 2.0 * d.hht_alpha);
+  d.beta = 0.25 * (d.gamma + 0.5) * (d.gamma + 0.5);
+}
+
 void frequency_procedure(State& s, const Block& b) {
   check_parameters(b, {"STORAGE", "SOLVER"});
   StepSpec& step = open_step(s, b);
@@ -349,7 +363,7 @@ void end_step(State& s, const Block& b) {
   check_parameters(b, {});
   StepSpec& step = open_step(s, b);
   if (!s.procedure)
-    fail(b, b.keyword, "the step has no procedure (*STATIC, *VISCO, *FREQUENCY or *STEADY STATE DYNAMICS)");
+    fail(b, b.keyword, "the step has no procedure (*STATIC, *VISCO, *DYNAMIC, *FREQUENCY or *STEADY STATE DYNAMICS)");
   if (step.type == StepSpec::Type::steady_state) {
     SteadyStateSpec& ss = step.steady_state;
     if (ss.loads.empty()) fail(b, b.keyword, "the *STEADY STATE DYNAMICS step has no *CLOAD (its excitation)");
