@@ -114,6 +114,13 @@ std::vector<Motion> take_rigid_motions(const State& s, StepSpec& step, const mes
     }
   }
   step.boundary = kept;
+  auto& held = step.steady_state.held;  // a steady-state step holds the conditions in effect: the same sets
+  held.erase(std::remove_if(held.begin(), held.end(),
+                            [&](const SetDofs& h) {
+                              const std::vector<int>& nodes = mesh.node_sets.at(h.set);
+                              return std::all_of(nodes.begin(), nodes.end(), [&](int n) { return special.count(n); });
+                            }),
+             held.end());
   for (std::size_t r = 0; r < s.rigid_bodies.size(); ++r) {
     const State::RigidBody& rb = s.rigid_bodies[r];
     const bool driven = out[r].given[0] && out[r].given[1] && out[r].given[2];
@@ -288,6 +295,15 @@ void finish_contacts(State& s) {
   for (std::size_t e = 0; e < rigid.size(); ++e)
     if (!rigid[e]) deformable.push_back(static_cast<int>(e));
   if (deformable.empty()) throw InputError(s.file.string() + ": every element belongs to a *RIGID BODY: nothing deforms");
+  for (int e : deformable)
+    for (int k = 0; k < mesh::nodes_per_element(whole.elements[e].type); ++k)
+      if (special.count(whole.elements[e].nodes[k]))
+        for (const State::RigidBody& rb : s.rigid_bodies)
+          if (node_of(s, rb.ref) == whole.elements[e].nodes[k] || (rb.rot && node_of(s, rb.rot) == whole.elements[e].nodes[k]))
+            throw InputError(where(rb.defined) + ": *RIGID BODY: its reference or rotation node " +
+                             std::to_string(whole.node_labels[whole.elements[e].nodes[k]]) +
+                             " belongs to the deformable element " + std::to_string(whole.elements[e].label) +
+                             "; give the rigid body nodes of its own");
   s.out.mesh.element_sets["#deformable"] = deformable;
   std::vector<std::string> notes;
   mesh::Mesh part = mesh::element_set_part(s.out.mesh, "#deformable", &notes);

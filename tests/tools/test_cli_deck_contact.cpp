@@ -92,6 +92,23 @@ TEST(DeckContact, RigidPlateOnLinearPressureOverclosureMatchesClosedForm) {
   }
 }
 
+TEST(DeckContact, PressedPlateThenFrequencyAndSteadyStateSteps) {
+  // The pressed plate is the base state of a *FREQUENCY and a *STEADY STATE DYNAMICS step (the rigid body's
+  // conditions, carried into them, hold the plate); both write their tables, the frames stay complete.
+  std::string deck = plate_deck(1.0) +
+                     "*STEP\n*FREQUENCY\n3\n*END STEP\n"
+                     "*STEP\n*STEADY STATE DYNAMICS, DIRECT\n10, 20, 3\n*CLOAD\n7, 3, 0.01\n*NODE PRINT, NSET=ALL\nU\n*END STEP\n";
+  const std::string hyperfoam = std::to_string(kMu) + ", " + std::to_string(kAlpha) + ", 0\n";
+  deck.insert(deck.find(hyperfoam) + hyperfoam.size(), "*DENSITY\n6.5e-11\n");
+  const fs::path dir = cli_test::scratch_dir("cushion_test_deck_contact_");
+  const CommandRun r = run_cushion("run " + quoted(write_text(dir, deck)) + " -o " + quoted(dir / "out") + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(cushion::read_csv(dir / "out" / "Step-2_frequencies.csv").rows(), 3u);
+  const cushion::CsvTable u = cushion::read_csv(dir / "out" / "Step-3_node_print_ALL.csv");
+  EXPECT_EQ(u.rows(), 3u * 8u);  // 3 frequencies x the 8 foam nodes (the plate's nodes left the mesh)
+  for (std::size_t row = 0; row < u.rows(); ++row) EXPECT_TRUE(std::isfinite(u.col("U3_re_mm")[row]));
+}
+
 TEST(DeckContact, ElasticIsLinearElasticityAtSmallStrain) {
   // One C3D8 cube pulled by 1e-5 strain with *ELASTIC E = 1000, nu = 0.3: RF = E eps A, lateral -nu eps a.
   const fs::path dir = cli_test::scratch_dir("cushion_test_deck_contact_");
@@ -143,6 +160,15 @@ TEST(DeckContact, WhatCannotRunIsOneLineWithFileAndLine) {
          return d;
        }(),
        "SPLATE, STOP", "the master surface STOP must lie on the elements of one *RIGID BODY"},
+      // The reference node is a node of the foam.
+      {[&] {
+         std::string d = ok;
+         for (const auto& [from, to] : {std::pair<std::string, std::string>{"REF NODE=17", "REF NODE=8"},
+                                        {"17, 1, 2", "8, 1, 2"}, {"17, 3, 3,", "8, 3, 3,"}})
+           d.replace(d.find(from), from.size(), to);
+         return d;
+       }(),
+       "*RIGID BODY", "its reference or rotation node 8 belongs to the deformable element 1"},
       {[&] {
          std::string d = ok;
          d.replace(d.find("STOP, SPLATE"), 12, "STOP, NOWHERE");
