@@ -1,5 +1,6 @@
 #include "solver/analysis/frequency_step.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 
@@ -19,6 +20,18 @@ std::unique_ptr<dynamics::LinearisedSystem> linearise_base_state(const AnalysisC
   }
 }
 
+std::vector<double> natural_frequencies_with_held(const dynamics::LinearisedSystem& system, const std::vector<bool>& held,
+                                                  const StepSpec& step) {
+  std::vector<int> free;
+  for (int d = 0; d < static_cast<int>(system.num_dofs()); ++d)
+    if (!held[d]) free.push_back(d);
+  try {
+    return dynamics::natural_frequencies(system.long_term_stiffness(), system.mass(), free, static_cast<int>(free.size()));
+  } catch (const std::invalid_argument& e) {
+    throw AnalysisError("step '" + step.name + "': " + e.what());
+  }
+}
+
 void FrequencyStep::run(AnalysisContext& ctx) {
   const FrequencySpec& s = spec_.frequency;
   const Assembler& assembler = *ctx.system(ctx.model().constrained).assembler;
@@ -28,21 +41,14 @@ void FrequencyStep::run(AnalysisContext& ctx) {
     for (int n : ctx.mesh().node_sets.at(bc.set))
       for (int c = 0; c < 3; ++c)
         if (bc.dofs[c]) held[DofMap::dof(n, c)] = true;
-  std::vector<int> free;
-  for (int d = 0; d < static_cast<int>(held.size()); ++d)
-    if (!held[d]) free.push_back(d);
-  std::vector<double> f;
-  try {
-    f = dynamics::natural_frequencies(system->long_term_stiffness(), system->mass(), free, static_cast<int>(free.size()));
-  } catch (const std::invalid_argument& e) {
-    throw AnalysisError("step '" + spec_.name + "': " + e.what());
-  }
+  const std::vector<double> f = natural_frequencies_with_held(*system, held, spec_);
+  const auto n_free = std::count(held.begin(), held.end(), false);
   const std::filesystem::path file = ctx.output().pvd_file().parent_path() / (spec_.name + "_frequencies.csv");
   std::ofstream out(file);
   out << "# cushion run " << ctx.spec().file.string() << ": step " << spec_.name << ", natural frequencies about t = "
-      << io::format_double(ctx.model().time) << " s (long-term tangent, consistent mass, " << free.size()
+      << io::format_double(ctx.model().time) << " s (long-term tangent, consistent mass, " << n_free
       << " free DOFs)\nmode,frequency_Hz,eigenvalue_rad2_s2\n";
-  ctx.log() << "step '" << spec_.name << "' (frequency): " << free.size() << " free DOFs\n";
+  ctx.log() << "step '" << spec_.name << "' (frequency): " << n_free << " free DOFs\n";
   int mode = 0;
   for (double fk : f) {
     if (fk < s.low || (s.high > 0.0 && fk > s.high)) continue;

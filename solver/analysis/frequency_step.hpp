@@ -18,6 +18,12 @@ namespace cushion::solver {
 std::unique_ptr<dynamics::LinearisedSystem> linearise_base_state(const AnalysisContext& ctx, const StepSpec& step,
                                                                  const Assembler& assembler, BaseStress stress);
 
+/// Every natural frequency [Hz], ascending, of `system` (long-term tangent, mass) with the DOFs marked in
+/// `held` (one flag per DOF of the system, at least) kept at zero; AnalysisError naming `step` past the dense
+/// solver's 6000 free DOFs or for a mass that is not positive definite on the free DOFs.
+std::vector<double> natural_frequencies_with_held(const dynamics::LinearisedSystem& system, const std::vector<bool>& held,
+                                                  const StepSpec& step);
+
 class FrequencyStep final : public CaseStep {
  public:
   using CaseStep::CaseStep;

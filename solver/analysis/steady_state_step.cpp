@@ -239,16 +239,7 @@ std::vector<double> resonance_frequencies(const StepSpec& step, const SweepSetup
   const LinearisedSystem& system = *setup.model.system;
   std::vector<bool> prescribed = setup.held;
   for (int d : setup.excitation.driven) prescribed[d] = true;
-  std::vector<int> free;
-  for (int d = 0; d < static_cast<int>(system.num_dofs()); ++d)
-    if (!prescribed[d]) free.push_back(d);
-  try {
-    const std::vector<double> fn =
-        natural_frequencies(system.long_term_stiffness(), system.mass(), free, static_cast<int>(free.size()));
-    return frequency_points(p.low, p.high, p.points, p.bias, fn);
-  } catch (const std::invalid_argument& e) {
-    throw AnalysisError("step '" + step.name + "': the resonances that place the frequencies: " + e.what());
-  }
+  return frequency_points(p.low, p.high, p.points, p.bias, natural_frequencies_with_held(system, prescribed, step));
 }
 
 /// Logs the step's set-up: base state, damping, linearisation time [s] and the indenters.

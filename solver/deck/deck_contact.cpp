@@ -29,11 +29,24 @@ void model_data_only(const State& s, const Block& b) {
 /// Node index of a label that must exist (the label is checked when the keyword is read).
 int node_of(const State& s, int label) { return s.node_index.at(label); }
 
-/// The rigid body whose element set holds element `e`, or -1.
-int rigid_body_of(const State& s, const std::vector<std::vector<int>>& members, int e) {
+/// Reference and rotation nodes of the rigid bodies: node index -> (body, is the reference node).
+using RigidNodes = std::map<int, std::pair<int, bool>>;
+
+RigidNodes rigid_nodes(const State& s) {
+  RigidNodes out;
+  for (std::size_t r = 0; r < s.rigid_bodies.size(); ++r) {
+    out[node_of(s, s.rigid_bodies[r].ref)] = {static_cast<int>(r), true};
+    if (s.rigid_bodies[r].rot) out[node_of(s, s.rigid_bodies[r].rot)] = {static_cast<int>(r), false};
+  }
+  return out;
+}
+
+/// Per element: the rigid body whose element set holds it, or -1.
+std::vector<int> rigid_body_of_elements(const State& s) {
+  std::vector<int> out(s.out.mesh.num_elements(), -1);
   for (std::size_t r = 0; r < s.rigid_bodies.size(); ++r)
-    if (std::binary_search(members[r].begin(), members[r].end(), e)) return static_cast<int>(r);
-  return -1;
+    for (int e : s.out.mesh.element_sets.at(s.rigid_bodies[r].elset)) out[e] = static_cast<int>(r);
+  return out;
 }
 
 /// The facets of surface `faces` (corner nodes; quadrilaterals split along the diagonal c0-c2), in mm,
@@ -74,12 +87,8 @@ struct Motion {
 
 /// Removes from `step` the conditions on the rigid bodies' reference and rotation nodes and returns the
 /// motion of each body; InputError where a body is not driven by displacement or would rotate.
-std::vector<Motion> take_rigid_motions(const State& s, StepSpec& step, const mesh::Mesh& mesh) {
-  std::map<int, std::pair<int, bool>> special;  // node index -> (body, is reference node)
-  for (std::size_t r = 0; r < s.rigid_bodies.size(); ++r) {
-    special[node_of(s, s.rigid_bodies[r].ref)] = {static_cast<int>(r), true};
-    if (s.rigid_bodies[r].rot) special[node_of(s, s.rigid_bodies[r].rot)] = {static_cast<int>(r), false};
-  }
+std::vector<Motion> take_rigid_motions(const State& s, StepSpec& step, const mesh::Mesh& mesh,
+                                       const RigidNodes& special) {
   std::vector<Motion> out(s.rigid_bodies.size());
   std::vector<std::array<bool, 3>> rotation_held(s.rigid_bodies.size(), {false, false, false});
   std::vector<BoundarySpec> kept;
@@ -114,13 +123,6 @@ std::vector<Motion> take_rigid_motions(const State& s, StepSpec& step, const mes
     }
   }
   step.boundary = kept;
-  auto& held = step.steady_state.held;  // a steady-state step holds the conditions in effect: the same sets
-  held.erase(std::remove_if(held.begin(), held.end(),
-                            [&](const SetDofs& h) {
-                              const std::vector<int>& nodes = mesh.node_sets.at(h.set);
-                              return std::all_of(nodes.begin(), nodes.end(), [&](int n) { return special.count(n); });
-                            }),
-             held.end());
   for (std::size_t r = 0; r < s.rigid_bodies.size(); ++r) {
     const State::RigidBody& rb = s.rigid_bodies[r];
     const bool driven = out[r].given[0] && out[r].given[1] && out[r].given[2];
@@ -140,7 +142,7 @@ std::vector<Motion> take_rigid_motions(const State& s, StepSpec& step, const mes
 
 /// Print requests of sets made of rigid bodies' nodes only are dropped with a note (the contact CSV holds the
 /// motion and force); other sets print their deformable nodes.
-void drop_rigid_prints(State& s, const std::set<int>& special) {
+void drop_rigid_prints(State& s, const RigidNodes& special) {
   auto& prints = s.out.spec.prints;
   for (auto it = prints.begin(); it != prints.end();) {
     const std::vector<int>* nodes = it->kind == PrintRequest::Kind::node ? &s.out.mesh.node_sets.at(it->set) : nullptr;
@@ -245,8 +247,8 @@ void contact_pair(State& s, const Block& b) {
 void finish_contacts(State& s) {
   if (s.rigid_bodies.empty() && s.contact_pairs.empty()) return;
   const mesh::Mesh& whole = s.out.mesh;
-  std::vector<std::vector<int>> members;
-  for (const State::RigidBody& rb : s.rigid_bodies) members.push_back(whole.element_sets.at(rb.elset));
+  const std::vector<int> body_of = rigid_body_of_elements(s);
+  const RigidNodes special = rigid_nodes(s);
   // Each pair: a rigid master surface (one body), a deformable slave surface.
   std::vector<int> body_of_pair;
   std::vector<std::shared_ptr<const mesh::TriangleSurface>> pair_facets;
@@ -254,7 +256,7 @@ void finish_contacts(State& s) {
     const Block block{pair.defined, "CONTACT PAIR", {}, {}};
     int body = -2;
     for (const mesh::Face& f : whole.surfaces.at(pair.master)) {
-      const int r = rigid_body_of(s, members, f.element);
+      const int r = body_of[f.element];
       if (r < 0 || (body >= 0 && r != body))
         fail(block, pair.defined, "the master surface " + pair.master +
                                       " must lie on the elements of one *RIGID BODY: cushion's contact is against "
@@ -262,28 +264,20 @@ void finish_contacts(State& s) {
       body = r;
     }
     for (const mesh::Face& f : whole.surfaces.at(pair.slave))
-      if (rigid_body_of(s, members, f.element) >= 0)
+      if (body_of[f.element] >= 0)
         fail(block, pair.defined, "the slave surface " + pair.slave + " lies on a rigid body");
     body_of_pair.push_back(body);
     pair_facets.push_back(std::make_shared<const mesh::TriangleSurface>(facets(whole, whole.surfaces.at(pair.master))));
   }
   // Motions (from conditions on the reference nodes), before the mesh loses those nodes.
   std::vector<std::vector<Motion>> motions;
-  for (StepSpec& step : s.out.spec.steps) motions.push_back(take_rigid_motions(s, step, whole));
-  std::set<int> special;
-  for (const State::RigidBody& rb : s.rigid_bodies) {
-    special.insert(node_of(s, rb.ref));
-    if (rb.rot) special.insert(node_of(s, rb.rot));
-  }
+  for (StepSpec& step : s.out.spec.steps) motions.push_back(take_rigid_motions(s, step, whole, special));
   drop_rigid_prints(s, special);
   // Sections on rigid bodies carry no material into the run.
-  std::vector<char> rigid(whole.num_elements(), 0);
-  for (const auto& m : members)
-    for (int e : m) rigid[e] = 1;
   std::vector<State::Section> sections;
   for (const State::Section& section : s.sections) {
     const std::vector<int>& els = whole.element_sets.at(section.elset);
-    const auto n_rigid = std::count_if(els.begin(), els.end(), [&](int e) { return rigid[e]; });
+    const auto n_rigid = std::count_if(els.begin(), els.end(), [&](int e) { return body_of[e] >= 0; });
     if (n_rigid == 0) sections.push_back(section);
     else if (n_rigid != static_cast<long>(els.size()))
       throw InputError(where(section.defined) + ": *SOLID SECTION: element set " + section.elset +
@@ -292,18 +286,19 @@ void finish_contacts(State& s) {
   s.sections = sections;
   // The deformable part.
   std::vector<int> deformable;
-  for (std::size_t e = 0; e < rigid.size(); ++e)
-    if (!rigid[e]) deformable.push_back(static_cast<int>(e));
+  for (std::size_t e = 0; e < body_of.size(); ++e)
+    if (body_of[e] < 0) deformable.push_back(static_cast<int>(e));
   if (deformable.empty()) throw InputError(s.file.string() + ": every element belongs to a *RIGID BODY: nothing deforms");
   for (int e : deformable)
-    for (int k = 0; k < mesh::nodes_per_element(whole.elements[e].type); ++k)
-      if (special.count(whole.elements[e].nodes[k]))
-        for (const State::RigidBody& rb : s.rigid_bodies)
-          if (node_of(s, rb.ref) == whole.elements[e].nodes[k] || (rb.rot && node_of(s, rb.rot) == whole.elements[e].nodes[k]))
-            throw InputError(where(rb.defined) + ": *RIGID BODY: its reference or rotation node " +
-                             std::to_string(whole.node_labels[whole.elements[e].nodes[k]]) +
-                             " belongs to the deformable element " + std::to_string(whole.elements[e].label) +
-                             "; give the rigid body nodes of its own");
+    for (int k = 0; k < mesh::nodes_per_element(whole.elements[e].type); ++k) {
+      const int node = whole.elements[e].nodes[k];
+      const auto it = special.find(node);
+      if (it != special.end())
+        throw InputError(where(s.rigid_bodies[it->second.first].defined) +
+                         ": *RIGID BODY: its reference or rotation node " + std::to_string(whole.node_labels[node]) +
+                         " belongs to the deformable element " + std::to_string(whole.elements[e].label) +
+                         "; give the rigid body nodes of its own");
+    }
   s.out.mesh.element_sets["#deformable"] = deformable;
   std::vector<std::string> notes;
   mesh::Mesh part = mesh::element_set_part(s.out.mesh, "#deformable", &notes);

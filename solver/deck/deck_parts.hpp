@@ -135,5 +135,7 @@ void node_print(State& s, const Block& b);
 void el_print(State& s, const Block& b);
 void result_file(State& s, const Block& b);
 void time_points(State& s, const Block& b);
+/// After finish_contacts: a steady-state step holds the DOFs of the conditions in effect in it.
+void finish_steps(State& s);
 
 }  // namespace cushion::solver::deck

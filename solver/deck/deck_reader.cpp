@@ -200,6 +200,7 @@ LoadedCase load_deck(const std::filesystem::path& file, const DeckUnits& units) 
   if (s.step) deck::fail(blocks.back(), blocks.back().keyword, "the last *STEP has no *END STEP");
   if (s.out.spec.steps.empty()) throw InputError(file.string() + ": the deck has no *STEP: nothing to run");
   deck::finish_contacts(s);
+  deck::finish_steps(s);
   deck::finish_material(s);
   std::set<std::string> node_sets;
   for (const auto& [name, nodes] : s.out.mesh.node_sets) node_sets.insert(name);

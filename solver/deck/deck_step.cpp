@@ -192,14 +192,16 @@ void boundary(State& s, const Block& b) {
 
 /// *CLOAD in a *STEADY STATE DYNAMICS step: harmonic forces of that step only (a linear perturbation's loads
 /// are not carried to later steps, as in ABAQUS).
+/// One data line "node or set, dof, magnitude" of *CLOAD: the force [N] per node of the set.
+HarmonicLoad cload_line(State& s, const Block& b, const Line& line) {
+  const std::vector<std::string> f = mesh::inp_fields(line.text);
+  if (f.size() != 3) fail(b, line, "expected 'node or set, dof, magnitude'");
+  return {node_target(s, b, line, f[0]), component(b, line, f[1]), number(b, line, f[2]) * s.units.force, where(line)};
+}
+
 void harmonic_cload(State& s, const Block& b, SteadyStateSpec& ss) {
   check_parameters(b, {});
-  for (const Line& line : b.data) {
-    const std::vector<std::string> f = mesh::inp_fields(line.text);
-    if (f.size() != 3) fail(b, line, "expected 'node or set, dof, magnitude'");
-    ss.loads.push_back({node_target(s, b, line, f[0]), component(b, line, f[1]), number(b, line, f[2]) * s.units.force,
-                        where(line)});
-  }
+  for (const Line& line : b.data) ss.loads.push_back(cload_line(s, b, line));
 }
 
 void cload(State& s, const Block& b) {
@@ -209,10 +211,8 @@ void cload(State& s, const Block& b) {
   if (op_new(s, b)) s.loads.clear();
   const std::optional<std::string> amp = amplitude_parameter(s, b);
   for (const Line& line : b.data) {
-    const std::vector<std::string> f = mesh::inp_fields(line.text);
-    if (f.size() != 3) fail(b, line, "expected 'node or set, dof, magnitude'");
-    LoadSpec load{node_target(s, b, line, f[0]), component(b, line, f[1]), number(b, line, f[2]) * s.units.force, amp,
-                  where(line)};
+    HarmonicLoad l = cload_line(s, b, line);
+    LoadSpec load{std::move(l.set), l.component, l.force, amp, std::move(l.key)};
     auto same = [&](const LoadSpec& o) { return o.set == load.set && o.component == load.component; };
     s.loads.erase(std::remove_if(s.loads.begin(), s.loads.end(), same), s.loads.end());
     s.loads.push_back(std::move(load));
@@ -367,7 +367,6 @@ void end_step(State& s, const Block& b) {
   if (step.type == StepSpec::Type::steady_state) {
     SteadyStateSpec& ss = step.steady_state;
     if (ss.loads.empty()) fail(b, b.keyword, "the *STEADY STATE DYNAMICS step has no *CLOAD (its excitation)");
-    for (const BoundarySpec& bc : s.boundary) ss.held.push_back({bc.set, bc.dofs, bc.key});
     ss.vtk = true;
   }
   step.boundary = s.boundary;
@@ -426,6 +425,12 @@ void time_points(State& s, const Block& b) {
   for (std::size_t k = 0; k < times.size(); ++k)
     if (!(times[k] >= 0.0) || (k > 0 && !(times[k] > times[k - 1]))) fail(b, b.keyword, "times must be >= 0 and increase");
   s.time_points[name] = times;
+}
+
+void finish_steps(State& s) {
+  for (StepSpec& step : s.out.spec.steps)
+    if (step.type == StepSpec::Type::steady_state)
+      for (const BoundarySpec& bc : step.boundary) step.steady_state.held.push_back({bc.set, bc.dofs, bc.key});
 }
 
 }  // namespace cushion::solver::deck
