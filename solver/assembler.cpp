@@ -1,6 +1,7 @@
 #include "solver/assembler.hpp"
 
 #include <algorithm>
+#include <array>
 #include <barrier>
 #include <exception>
 #include <stdexcept>
@@ -33,6 +34,28 @@ std::vector<std::vector<int>> colour_elements(const mesh::Mesh& mesh, const std:
   return colours;
 }
 
+/// The elements of `active` with a node owned by this process: those its rows need.
+std::vector<int> local_elements(const mesh::Mesh& mesh, const std::vector<int>& active, const Distribution& d) {
+  std::vector<int> local;
+  for (int e : active) {
+    const auto& el = mesh.elements[e];
+    for (int a = 0; a < mesh::nodes_per_element(el.type); ++a)
+      if (d.owns_node(el.nodes[a])) {
+        local.push_back(e);
+        break;
+      }
+  }
+  return local;
+}
+
+/// Zeroes the entries of `full` (3 per node) at nodes this process does not own, then sums over the
+/// processes: rows exact on their owner become whole everywhere.
+void complete_rows(Eigen::VectorXd& full, const Distribution& d) {
+  for (Eigen::Index i = 0; i < full.size(); ++i)
+    if (!d.owns_node(static_cast<int>(i / 3))) full(i) = 0.0;
+  d.sum(std::span<double>(full.data(), static_cast<std::size_t>(full.size())));
+}
+
 }  // namespace
 
 Assembler::Assembler(const mesh::Mesh& mesh, std::vector<Section> sections, DofMap dofs, AssemblyOptions options)
@@ -57,7 +80,8 @@ Assembler::Assembler(const mesh::Mesh& mesh, std::vector<Section> sections, DofM
     if (on) active.push_back(static_cast<int>(e));
     point_offset_[e + 1] = point_offset_[e] + (on ? num_points(mesh.elements[e].type) : 0);
   }
-  colours_ = colour_elements(mesh, active);
+  distribution_ = options.distribution;
+  colours_ = colour_elements(mesh, distribution_ ? local_elements(mesh, active, *distribution_) : active);
 
   num_threads_ = options.num_threads ? options.num_threads : std::max(1u, std::thread::hardware_concurrency());
 
@@ -232,7 +256,67 @@ AssemblyStatus Assembler::assemble(const Eigen::VectorXd& u_old, const Eigen::Ve
       total.message = s.message;
     }
   }
-  return total;
+  if (!distribution_) return total;
+  complete_rows(f_int, *distribution_);
+  if (points) complete_points(*points, state);
+  return agree(total);
+}
+
+AssemblyStatus Assembler::agree(const AssemblyStatus& local) const {
+  const Distribution& d = *distribution_;
+  AssemblyStatus all = local;
+  all.dt_factor = d.min(local.dt_factor);
+  all.status = static_cast<material::Status>(static_cast<int>(d.max(static_cast<int>(local.status))));
+  if (all.status == material::Status::ok) return all;
+  // The first element (in element order) of the worst status, and its message from its process.
+  const double none = static_cast<double>(mesh_.num_elements());
+  all.element = static_cast<int>(d.min(local.status == all.status ? local.element : none));
+  const int root = static_cast<int>(d.min(local.status == all.status && local.element == all.element ? d.rank() : d.size()));
+  all.point = static_cast<int>(d.max(d.rank() == root ? local.point : -1));
+  all.message = d.broadcast(local.message, root);
+  return all;
+}
+
+void Assembler::complete_points(std::vector<PointOutput>& points, StateStore& state) const {
+  const Distribution& d = *distribution_;
+  // Each element's points and trial state from its owner (the owner of its first node), zero elsewhere.
+  auto fields = [](PointOutput& p) {
+    return std::array<std::span<double>, 5>{std::span<double>(p.F.data(), 9), std::span<double>(p.S.data(), 6),
+                                            std::span<double>(p.sigma.data(), 6), std::span<double>(p.X.data(), 3),
+                                            std::span<double>(&p.dV0, 1)};
+  };
+  std::vector<double> packed;
+  packed.reserve(25 * points.size());
+  for (std::size_t e = 0; e < mesh_.num_elements(); ++e) {
+    if (section_of_[e] < 0) continue;
+    const bool mine = d.node_owner(mesh_.elements[e].nodes[0]) == d.rank();
+    if (!mine) {
+      const auto trial = state.new_state(static_cast<int>(e));
+      std::fill(trial.begin(), trial.end(), 0.0);
+    }
+    for (std::size_t k = point_offset_[e]; k < point_offset_[e + 1]; ++k)
+      for (std::span<double> f : fields(points[k])) {
+        if (mine) packed.insert(packed.end(), f.begin(), f.end());
+        else packed.insert(packed.end(), f.size(), 0.0);
+      }
+  }
+  d.sum(packed);
+  d.sum(state.trial_values());
+  std::size_t j = 0;
+  for (std::size_t e = 0; e < mesh_.num_elements(); ++e)
+    if (section_of_[e] >= 0)
+      for (std::size_t k = point_offset_[e]; k < point_offset_[e + 1]; ++k)
+        for (std::span<double> f : fields(points[k])) {
+          std::copy_n(packed.begin() + static_cast<std::ptrdiff_t>(j), f.size(), f.begin());
+          j += f.size();
+        }
+}
+
+void Assembler::complete_free(Eigen::VectorXd& v) const {
+  if (!distribution_) return;
+  for (Eigen::Index i = 0; i < v.size(); ++i)
+    if (!distribution_->owns_node(dofs_.free_dofs()[i] / 3)) v(i) = 0.0;
+  distribution_->sum(std::span<double>(v.data(), static_cast<std::size_t>(v.size())));
 }
 
 void Assembler::assemble_mass(SparseMatrix& M) const {
@@ -243,6 +327,12 @@ void Assembler::assemble_mass(SparseMatrix& M) const {
     const double rho = sections_[section_of_[e]].density;
     if (rho != 0.0) scatter(e, consistent_mass(mesh_.elements[e].type, gather(e, nullptr), rho), &M, nullptr);
   });
+  if (!distribution_) return;
+  // Whole rows everywhere: zero the columns' entries in rows of nodes owned elsewhere, then sum.
+  for (Eigen::Index k = 0; k < M.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(M, k); it; ++it)
+      if (!distribution_->owns_node(dofs_.free_dofs()[it.row()] / 3)) it.valueRef() = 0.0;
+  distribution_->sum(std::span<double>(M.valuePtr(), static_cast<std::size_t>(M.nonZeros())));
 }
 
 double Assembler::total_mass() const {

@@ -11,6 +11,7 @@
 #include <Eigen/Sparse>
 
 #include "mesh/mesh.hpp"
+#include "solver/distribution.hpp"
 #include "solver/dof_map.hpp"
 #include "solver/elements/solid_element.hpp"
 #include "solver/state_store.hpp"
@@ -32,6 +33,9 @@ struct Section {
 /// Threading of the element loop.
 struct AssemblyOptions {
   unsigned num_threads = 0;  ///< 0: std::thread::hardware_concurrency()
+  /// A distributed run (distribution.hpp): evaluate only the elements touching this process's nodes
+  /// and make the results whole (below). nullptr: one process, every element.
+  std::shared_ptr<const Distribution> distribution;
 };
 
 /// Outcome of one global evaluation (worst element status; first failed element in element order).
@@ -65,12 +69,21 @@ class Assembler {
   /// the reaction), the free-free tangent into *K [N/mm] if K (must come from make_matrix()), the
   /// trial state, point outputs if `points` (resized to num_points_total()), and the coupling
   /// block d f_free / d u_constrained [N/mm] into *K_fc if K_fc (from make_coupling_matrix()).
+  /// Distributed: f_int, the status, the point outputs and (when `points` is asked for) the trial
+  /// state of every element are whole and equal on every process; K and K_fc are exact in the rows
+  /// of the owned nodes only (what the linear solver takes; complete_free() for products with them).
   AssemblyStatus assemble(const Eigen::VectorXd& u_old, const Eigen::VectorXd& u_new, double dt, StateStore& state,
                           Eigen::VectorXd& f_int, SparseMatrix* K, std::vector<PointOutput>* points = nullptr,
                           SparseMatrix* K_fc = nullptr) const;
 
-  /// Consistent mass matrix on the free DOFs [t] into M (from make_matrix()).
+  /// Consistent mass matrix on the free DOFs [t] into M (from make_matrix()); whole on every process.
   void assemble_mass(SparseMatrix& M) const;
+  /// A free-DOF vector exact in the rows of the owned nodes (e.g. K_fc du) made whole on every
+  /// process (distributed runs; nothing to do on one process).
+  void complete_free(Eigen::VectorXd& v) const;
+  /// The distribution of a distributed run, nullptr on one process.
+  const Distribution* distribution() const { return distribution_.get(); }
+
   /// Total mass sum rho V of all sections [t].
   double total_mass() const;
 
@@ -92,6 +105,10 @@ class Assembler {
   void for_each_element(const Work& work) const;
   NodeMatrix gather(int e, const Eigen::VectorXd* u) const;
   void scatter(int e, const ElementMatrix& Ke, SparseMatrix* K, SparseMatrix* K_fc) const;
+  AssemblyStatus agree(const AssemblyStatus& local) const;
+  void complete_points(std::vector<PointOutput>& points, StateStore& state) const;
+
+  std::shared_ptr<const Distribution> distribution_;
 
   const mesh::Mesh& mesh_;
   std::vector<Section> sections_;

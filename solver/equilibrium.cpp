@@ -54,10 +54,14 @@ ProblemEvaluation EquilibriumProblem::predict(Eigen::VectorXd& x, LinearSolver& 
   const auto& fixed = dofs.constrained_dofs();
   Eigen::VectorXd du_c(static_cast<Eigen::Index>(fixed.size()));
   for (std::size_t k = 0; k < fixed.size(); ++k) du_c(k) = u_end(fixed[k]) - u_old_(fixed[k]);
-  const Eigen::VectorXd rhs = -(dofs.gather_free(r_full_) + K_fc_ * du_c);
+  // K_fc is exact in the owned rows only (distributed runs): its products are completed.
+  Eigen::VectorXd coupling = K_fc_ * du_c;
+  assembler_.complete_free(coupling);
+  const Eigen::VectorXd rhs = -(dofs.gather_free(r_full_) + coupling);
 
   // Force scale of the boundary increment: what each free DOF is pushed with before cancellation.
-  const Eigen::VectorXd pushed = K_fc_.cwiseAbs() * du_c.cwiseAbs();
+  Eigen::VectorXd pushed = K_fc_.cwiseAbs() * du_c.cwiseAbs();
+  assembler_.complete_free(pushed);
   const Eigen::Index loaded = (pushed.array() > 0.0).count();
   const double q_p = std::max(ev.force_scale, loaded ? pushed.sum() / static_cast<double>(loaded) : 0.0);
   if (rhs.size() == 0 || rhs.cwiseAbs().maxCoeff() <= negligible_predictor_residual * q_p) return ev;

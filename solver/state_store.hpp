@@ -30,6 +30,9 @@ class StateStore {
   /// Trial state of element e, read only.
   std::span<const double> new_state(int e) const { return {new_.data() + offset_[e], offset_[e + 1] - offset_[e]}; }
 
+  /// Every trial value, element after element (for the reductions of a distributed run).
+  std::span<double> trial_values() { return new_; }
+
   void commit() { old_ = new_; }  ///< trial state becomes the committed state
   void revert() { new_ = old_; }  ///< trial state reset to the committed state
 

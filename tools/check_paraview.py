@@ -111,6 +111,7 @@ def short_iso(case):
 # case file -> how it is shortened (None: run as shipped)
 SHORT = {
     "cube_compression/case.json": None,
+    "cube_compression/case_petsc.json": None,            # the same with PETSc (needs a build with it)
     "sitbar_quasistatic/cube_same_rate.json": None,
     "dynamic_sine/case.json": short_dynamic,              # hold 20 s, shake 0.1 s, sweep VTK on
     "iso2439_hardness/case.json": short_iso,              # 8x8x4, hold 4 s

@@ -10,9 +10,11 @@
 #include "solver/deck/deck_reader.hpp"
 #include "solver/output/interrupt.hpp"
 #ifdef CUSHION_HAVE_PETSC
+#include "solver/petsc/mpi_distribution.hpp"
 #include "solver/petsc/petsc_session.hpp"
 #endif
 #include "tools/command.hpp"
+#include "tools/mpi_launch.hpp"
 
 namespace cushion::tools {
 
@@ -36,18 +38,60 @@ solver::LoadedCase load(const RunCommandOptions& o) {
   return solver::load_deck(o.case_file, solver::deck_units(o.units.empty() ? "mm-N-MPa" : o.units));
 }
 
+/// Refuses an mpirun launch that cannot run distributed (the same message on every process).
+void check_launch(const solver::LoadedCase& loaded) {
+  const int processes = launched_processes();
+  if (processes <= 1) return;
+#ifndef CUSHION_HAVE_PETSC
+  throw InputError("started by mpirun on " + std::to_string(processes) +
+                   " processes, but this cushion was built without PETSc and MPI (install libpetsc-real-dev, "
+                   "e.g. with tools/deps.sh, and configure again), or run it without mpirun");
+#endif
+  if (loaded.spec.solver.linear_solver != solver::SolverSpec::LinearSolver::petsc)
+    throw InputError(loaded.spec.file.string() + ": solver.linear_solver: a run on " + std::to_string(processes) +
+                     " MPI processes needs \"petsc\" (CHOLMOD and UMFPACK run on one process)");
+}
+
+/// Runs the analysis; in a distributed run, an error that only this process met (so the others would
+/// wait for it forever) stops every process.
+solver::RunSummary run_everywhere(const solver::LoadedCase& loaded, const solver::RunOptions& options) {
+  if (!options.distribution) return solver::run_analysis(loaded, options);
+  try {
+    return solver::run_analysis(loaded, options);
+  } catch (const InputError&) {
+    throw;  // the same on every process (checks of the replicated input)
+  } catch (const solver::AnalysisError&) {
+    throw;  // decided from reduced, replicated values: the same on every process
+  } catch (const solver::Interrupted&) {
+    throw;
+  } catch (const std::exception& e) {
+#ifdef CUSHION_HAVE_PETSC
+    std::cerr << "cushion: error on MPI process " << options.distribution->rank() << ": " << e.what()
+              << "; stopping every process (frames written so far are complete)" << std::endl;
+    solver::petsc::abort_all(1);
+#endif
+    throw;
+  }
+}
+
 void run_command(RunCommandOptions o) {
   o.out.inputs = {o.case_file};
-  io::check_output_folder(o.out);  // before the mesh is built
+  // Before the mesh is built; under mpirun by process 0 only, which alone creates the folder (if the check
+  // fails there, mpirun ends the other processes).
+  if (launched_rank() == 0) io::check_output_folder(o.out);
   const solver::LoadedCase loaded = load(o);
+  check_launch(loaded);
+  const bool first = launched_rank() == 0;  // prints and writes
   o.out.inputs.insert(o.out.inputs.end(), {loaded.spec.material_file, loaded.spec.mesh.inp_file, loaded.spec.mesh.stl.file});
-  for (const std::string& warning : loaded.warnings) std::cerr << "cushion: warning: " << warning << "\n";
+  if (first)
+    for (const std::string& warning : loaded.warnings) std::cerr << "cushion: warning: " << warning << "\n";
   solver::RunOptions options;
   options.output_dir = o.out.dir;
   options.threads = o.threads;
-  options.progress = o.quiet ? nullptr : &std::cout;
+  options.progress = o.quiet || !first ? nullptr : &std::cout;
   // After every input check, so that bad input prints its one line and nothing else.
-  options.prepare_output = [&o, &loaded] {
+  options.prepare_output = [&o, &loaded, first] {
+    if (!first) return;
     io::prepare_output_folder(o.out);
     if (!o.quiet)
       std::cout << "cushion run " << o.case_file << ": " << loaded.mesh.num_nodes() << " nodes, "
@@ -58,11 +102,12 @@ void run_command(RunCommandOptions o) {
   // PETSc and MPI live from here to the end of the run, and only for a case that chooses them.
   std::optional<solver::petsc::Session> petsc;
   if (loaded.spec.solver.linear_solver == solver::SolverSpec::LinearSolver::petsc) petsc.emplace();
+  if (petsc && solver::petsc::world_size() > 1) options.distribution = solver::petsc::make_distribution(loaded.mesh);
 #endif
   const solver::InterruptGuard guard;
-  const solver::RunSummary summary = solver::run_analysis(loaded, options);
+  const solver::RunSummary summary = run_everywhere(loaded, options);
   // The summary is printed even with --quiet: it is the result of the run.
-  std::cout << solver::format_summary(summary) << std::flush;
+  if (first) std::cout << solver::format_summary(summary) << std::flush;
 }
 
 const Registrar reg{"run", [](CLI::App& app) {

@@ -2,9 +2,11 @@
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#include <string>
 
 #include "io/input_error.hpp"
 #include "tools/command.hpp"
+#include "tools/mpi_launch.hpp"
 
 namespace cushion::tools {
 std::vector<std::pair<std::string, Setup>>& registry() {
@@ -22,16 +24,25 @@ int main(int argc, char** argv) {
     return std::string("cushion: argument error: ") + e.what() + " (see cushion --help)\n";
   });
   for (auto& [name, setup] : cushion::tools::registry()) setup(app);
+  // Under mpirun -np N every process runs this; one message is enough (errors of a distributed run
+  // are met by every process alike, see tools/cmd_run.cpp).
+  static std::ostream silent(nullptr);
+  std::ostream& err = cushion::tools::launched_rank() == 0 ? std::cerr : silent;
+  if (cushion::tools::launched_processes() > 1 && !(argc > 1 && std::string(argv[1]) == "run")) {
+    err << "cushion: input error: started by mpirun on " << cushion::tools::launched_processes()
+        << " processes: only `cushion run` runs distributed (start the other commands without mpirun)\n";
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     // --help and --version exit 0; every argument error exits 2 like any other input error.
     return app.exit(e) == 0 ? 0 : 2;
   } catch (const cushion::InputError& e) {
-    std::cerr << "cushion: input error: " << e.what() << "\n";
+    err << "cushion: input error: " << e.what() << "\n";
     return 2;
   } catch (const std::exception& e) {
-    std::cerr << "cushion: error: " << e.what() << "\n";
+    err << "cushion: error: " << e.what() << "\n";
     return 1;
   }
   return 0;

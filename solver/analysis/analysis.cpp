@@ -18,11 +18,14 @@ namespace cushion::solver {
 namespace {
 
 /// The PETSc solver with the case's options, checked now (before anything is written).
-LinearSolverFactory petsc_solver_factory(const CaseSpec& spec, bool symmetric) {
+LinearSolverFactory petsc_solver_factory(const CaseSpec& spec, bool symmetric,
+                                         std::shared_ptr<const Distribution> distribution) {
 #ifdef CUSHION_HAVE_PETSC
   const std::string problem = petsc::options_problem(symmetric, spec.solver.petsc_options);
   if (!problem.empty()) throw InputError(spec.file.string() + ": solver.petsc_options: " + problem);
-  return [symmetric, options = spec.solver.petsc_options] { return petsc::make_solver(symmetric, options); };
+  return [symmetric, options = spec.solver.petsc_options, distribution] {
+    return petsc::make_solver(symmetric, options, distribution);
+  };
 #else
   throw InputError(spec.file.string() +
                    ": solver.linear_solver: \"petsc\" is not available: this cushion was built without PETSc "
@@ -31,7 +34,11 @@ LinearSolverFactory petsc_solver_factory(const CaseSpec& spec, bool symmetric) {
 }
 
 /// The case's linear solver, checked against its tangent (and, for PETSc, the options and the build).
-LinearSolverFactory linear_solver_factory(const CaseSpec& spec) {
+/// A distributed run needs PETSc (the direct solvers take whole matrices on one process).
+LinearSolverFactory linear_solver_factory(const CaseSpec& spec, std::shared_ptr<const Distribution> distribution) {
+  if (distribution && spec.solver.linear_solver != SolverSpec::LinearSolver::petsc)
+    throw InputError(spec.file.string() + ": solver.linear_solver: a run on " + std::to_string(distribution->size()) +
+                     " MPI processes needs \"petsc\" (CHOLMOD and UMFPACK run on one process)");
   // F-bar, frictional contact and follower pressure tangents are unsymmetric.
   const bool fbar = spec.mesh.formulation == HexFormulation::fbar || case_has_friction(spec) || case_has_pressure(spec);
   auto direct = [](LinearSolverKind kind) -> LinearSolverFactory { return [kind] { return make_linear_solver(kind); }; };
@@ -43,7 +50,7 @@ LinearSolverFactory linear_solver_factory(const CaseSpec& spec) {
                          "contact tangents are unsymmetric (use \"auto\" or \"umfpack\")");
       return direct(LinearSolverKind::cholesky);
     case SolverSpec::LinearSolver::umfpack: return direct(LinearSolverKind::lu);
-    case SolverSpec::LinearSolver::petsc: return petsc_solver_factory(spec, !fbar);
+    case SolverSpec::LinearSolver::petsc: return petsc_solver_factory(spec, !fbar, std::move(distribution));
     case SolverSpec::LinearSolver::automatic: break;
   }
   return direct(fbar ? LinearSolverKind::lu : LinearSolverKind::cholesky_or_lu);
@@ -82,20 +89,24 @@ double peak_memory_mb() {
 
 RunSummary run_analysis(const LoadedCase& loaded, const RunOptions& options) {
   const CaseSpec& spec = loaded.spec;
-  LinearSolverFactory make_linear = linear_solver_factory(spec);
+  LinearSolverFactory make_linear = linear_solver_factory(spec, options.distribution);
   check_contacts_before_run(loaded);
   if (options.prepare_output) options.prepare_output();
   const int threads_wanted = options.threads >= 0 ? options.threads : spec.solver.threads;
   const unsigned threads = threads_wanted > 0 ? static_cast<unsigned>(threads_wanted)
                                               : std::max(1u, std::thread::hardware_concurrency());
 
-  AnalysisOutput output(spec, loaded.mesh, options.output_dir);
+  const bool writes = !options.distribution || options.distribution->rank() == 0;
+  AnalysisOutput output(spec, loaded.mesh, options.output_dir, writes);
   const std::filesystem::path log_file = options.output_dir / "solver.log";
-  std::ofstream log(log_file);
-  if (!log) throw std::runtime_error("cannot write " + log_file.string());
+  std::ofstream log;  // left closed on the processes that write nothing: what they log is dropped
+  if (writes) log.open(log_file);
+  if (writes && !log) throw std::runtime_error("cannot write " + log_file.string());
   log << "cushion run " << spec.file.string() << "\nmaterial: " << loaded.material.model->describe() << "\n";
   AnalysisContext ctx(loaded.mesh, spec, case_sections(loaded), std::move(make_linear), threads, output, log,
-                      options.progress);
+                      options.progress, options.distribution);
+  if (options.distribution)
+    log << "distributed over " << options.distribution->size() << " processes (this log: process 0)\n";
 
   std::vector<std::unique_ptr<Step>> steps;
   for (const StepSpec& s : spec.steps) steps.push_back(make_step(s));

@@ -21,6 +21,7 @@
 #include <string>
 
 #include "solver/analysis/step.hpp"
+#include "solver/distribution.hpp"
 #include "solver/case/case_file.hpp"
 
 namespace cushion::solver {
@@ -33,6 +34,9 @@ struct RunOptions {
   /// Called after the input checks that need no solution and before the first file is written
   /// (`cushion run`: the output-folder policy, io/output_folder.hpp); may throw InputError.
   std::function<void()> prepare_output;
+  /// A distributed run (solver/distribution.hpp; every process calls run_analysis with its own): only
+  /// process 0 writes files; nullptr: one process.
+  std::shared_ptr<const Distribution> distribution;
 };
 
 /// Figures of a finished run (times are wall-clock seconds).

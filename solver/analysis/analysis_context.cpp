@@ -23,9 +23,11 @@ Eigen::VectorXd TimedLinearSolver::solve(const Eigen::VectorXd& b) {
 
 AnalysisContext::AnalysisContext(const mesh::Mesh& mesh, const CaseSpec& spec, std::vector<Section> sections,
                                  LinearSolverFactory make_linear, unsigned threads, AnalysisOutput& output,
-                                 std::ostream& log, std::ostream* progress)
+                                 std::ostream& log, std::ostream* progress,
+                                 std::shared_ptr<const Distribution> distribution)
     : mesh_(mesh), spec_(spec), output_(output), log_(log), progress_(progress), sections_(std::move(sections)),
-      make_linear_(std::move(make_linear)), threads_(threads), start_(std::chrono::steady_clock::now()) {
+      make_linear_(std::move(make_linear)), threads_(threads), distribution_(std::move(distribution)),
+      start_(std::chrono::steady_clock::now()) {
   model_.u = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(mesh.num_nodes()));
   model_.f_int = model_.u;
   model_.constrained.assign(model_.u.size(), false);
@@ -41,7 +43,7 @@ System& AnalysisContext::system(const std::vector<bool>& mask) {
   auto s = std::make_unique<System>();
   s->constrained = mask;
   s->assembler =
-      std::make_unique<Assembler>(mesh_, sections_, DofMap(mesh_.num_nodes(), mask), AssemblyOptions{threads_});
+      std::make_unique<Assembler>(mesh_, sections_, DofMap(mesh_.num_nodes(), mask), AssemblyOptions{threads_, distribution_});
   s->linear = std::make_unique<TimedLinearSolver>(make_linear_(), stats_, log_);
   s->linear->set_geometry(s->assembler->dofs(), mesh_.nodes);
   if (systems_.empty()) model_.material = s->assembler->make_state_store();  // same layout for every system

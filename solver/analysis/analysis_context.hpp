@@ -92,7 +92,7 @@ class AnalysisContext {
   /// material (here: the case's).
   AnalysisContext(const mesh::Mesh& mesh, const CaseSpec& spec, std::vector<Section> sections,
                   LinearSolverFactory make_linear, unsigned threads, AnalysisOutput& output, std::ostream& log,
-                  std::ostream* progress);
+                  std::ostream* progress, std::shared_ptr<const Distribution> distribution = nullptr);
 
   const mesh::Mesh& mesh() const { return mesh_; }  ///< the model's mesh (reference, mm)
   const CaseSpec& spec() const { return spec_; }     ///< the case being run
@@ -119,6 +119,9 @@ class AnalysisContext {
   /// The contact `name` if a step has used it, else nullptr.
   const ContactContributor* find_contact(const std::string& name) const;
 
+  /// The distribution of a distributed run (its assemblers evaluate this process's elements), or nullptr.
+  const Distribution* distribution() const { return distribution_.get(); }
+
   /// Seconds since the context was created.
   double elapsed() const;
 
@@ -133,6 +136,7 @@ class AnalysisContext {
   std::vector<Section> sections_;
   LinearSolverFactory make_linear_;
   unsigned threads_;
+  std::shared_ptr<const Distribution> distribution_;
   std::vector<std::unique_ptr<System>> systems_;
   std::map<std::string, std::shared_ptr<ContactContributor>> contacts_;  ///< by contact name
   std::chrono::steady_clock::time_point start_;

@@ -140,23 +140,38 @@ void PrintTables::write(const FrameData& frame) const {
   }
 }
 
-AnalysisOutput::AnalysisOutput(const CaseSpec& spec, const mesh::Mesh& mesh, const std::filesystem::path& dir)
-    : mesh_(mesh), series_(dir, "results"), columns_(spec, mesh),
-      history_(dir / "history.csv", columns_.names(),
-               {"cushion run " + spec.file.string() + ": history per converged increment",
-                "U = mean displacement of the set [mm], RF = sum of reaction forces over the set [N]"}),
-      prints_(spec, mesh, dir) {}
+struct AnalysisOutput::Files {
+  ResultSeries series;
+  HistoryWriter history;
+  PrintTables prints;
+};
+
+AnalysisOutput::AnalysisOutput(const CaseSpec& spec, const mesh::Mesh& mesh, const std::filesystem::path& dir,
+                               bool writes)
+    : mesh_(mesh), dir_(dir), columns_(spec, mesh) {
+  if (!writes) return;
+  files_.reset(new Files{ResultSeries(dir, "results"),
+                         HistoryWriter(dir / "history.csv", columns_.names(),
+                                       {"cushion run " + spec.file.string() + ": history per converged increment",
+                                        "U = mean displacement of the set [mm], RF = sum of reaction forces over "
+                                        "the set [N]"}),
+                         PrintTables(spec, mesh, dir)});
+}
+
+AnalysisOutput::~AnalysisOutput() = default;
 
 void AnalysisOutput::write_frame(FrameData frame) {
-  series_.write_frame(mesh_, frame);
-  prints_.write(frame);
+  if (files_) {
+    files_->series.write_frame(mesh_, frame);
+    files_->prints.write(frame);
+  }
+  ++frames_;
   last_frame_time_ = frame.time;
 }
 
 void AnalysisOutput::write_history(double time, const Eigen::VectorXd& u, const Eigen::VectorXd& f_int,
                                    const DofMap& dofs) {
-  const std::vector<double> values = columns_.values(u, f_int, dofs);
-  history_.write_row(time, values);
+  if (files_) files_->history.write_row(time, columns_.values(u, f_int, dofs));
 }
 
 }  // namespace cushion::solver

@@ -64,28 +64,39 @@ class PrintTables {
   std::vector<Table> tables_;
 };
 
-/// Files of one run: <dir>/results.pvd + results_NNNN.vtu and <dir>/history.csv.
+/// Files of one run: <dir>/results.pvd + results_NNNN.vtu and <dir>/history.csv. In a distributed
+/// run only process 0 writes (`writes` false elsewhere: nothing is created, writes are counted only).
 class AnalysisOutput {
  public:
-  /// Creates the folder and (truncates) the files. std::runtime_error if they cannot be written.
-  AnalysisOutput(const CaseSpec& spec, const mesh::Mesh& mesh, const std::filesystem::path& dir);
+  /// Creates the folder and (truncates) the files if `writes`. std::runtime_error if they cannot be written.
+  AnalysisOutput(const CaseSpec& spec, const mesh::Mesh& mesh, const std::filesystem::path& dir, bool writes = true);
+  ~AnalysisOutput();
 
   /// Writes a frame (see make_frame) plus extra arrays (e.g. from residual contributors).
   void write_frame(FrameData frame);
   /// Appends one history row at total time `time` [s].
   void write_history(double time, const Eigen::VectorXd& u, const Eigen::VectorXd& f_int, const DofMap& dofs);
 
-  std::filesystem::path pvd_file() const { return series_.pvd_file(); }
-  std::filesystem::path history_file() const { return history_.file(); }
-  std::size_t frame_count() const { return series_.frame_count(); }
+  /// A further table <dir>/<file_name> (HistoryWriter), or a writer that writes nothing where writes() is false.
+  HistoryWriter table(const std::string& file_name, std::vector<std::string> columns,
+                      const std::vector<std::string>& comment) const {
+    if (!writes()) return HistoryWriter(std::move(columns));
+    return HistoryWriter(dir_ / file_name, std::move(columns), comment);
+  }
+  /// False on the processes of a distributed run that write nothing (every file writer asks this).
+  bool writes() const { return files_ != nullptr; }
+  std::filesystem::path pvd_file() const { return dir_ / "results.pvd"; }
+  std::filesystem::path history_file() const { return dir_ / "history.csv"; }
+  std::size_t frame_count() const { return frames_; }
   double last_frame_time() const { return last_frame_time_; }  ///< total time [s], -1 before any frame
 
  private:
+  struct Files;
   const mesh::Mesh& mesh_;
-  ResultSeries series_;
+  std::filesystem::path dir_;
   HistoryColumns columns_;
-  HistoryWriter history_;
-  PrintTables prints_;
+  std::unique_ptr<Files> files_;
+  std::size_t frames_ = 0;
   double last_frame_time_ = -1.0;
 };
 

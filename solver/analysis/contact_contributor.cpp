@@ -156,8 +156,8 @@ ContactContributor::ContactContributor(const ContactSpec& spec, AnalysisContext&
     : ctx_(ctx), set_(build_set_warning(spec, ctx)), force_factor_(spec.force_factor),
       force_factors_(full_model_factors(spec.force_factor, first_step_with(ctx.spec(), spec.name), ctx.mesh(),
                                         set_.nodes())),
-      history_(ctx.output().pvd_file().parent_path() / ("contact_" + spec.name + ".csv"),
-               contact_history_columns(spec.name), history_comments(set_, spec.force_factor, force_factors_)) {
+      history_(ctx.output().table("contact_" + spec.name + ".csv", contact_history_columns(spec.name),
+                                  history_comments(set_, spec.force_factor, force_factors_))) {
   const std::vector<double> zeros(contact_history_columns(spec.name).size(), 0.0);
   history_.write_row(ctx.model().time, zeros);
 }

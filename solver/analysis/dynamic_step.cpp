@@ -172,8 +172,7 @@ void DynamicStep::run(AnalysisContext& ctx) {
       throw AnalysisError("step '" + spec_.name + "': " + e.what());
     }
   }
-  const std::filesystem::path dir = ctx.output().pvd_file().parent_path();
-  HistoryWriter energy_file(dir / (spec_.name + "_energy.csv"), energy_columns(),
+  HistoryWriter energy_file = ctx.output().table(spec_.name + "_energy.csv", energy_columns(),
                             {"step " + spec_.name + ": energies since t = " + fmt("%.9g", t0) +
                              " s [mJ = N mm]; balance = kinetic + internal + damping - external - kinetic at start"});
   DynamicStepper stepper(model, spec_, boundary, newmark, assembler, std::move(k), f_int_n, hht_force, energy_file);

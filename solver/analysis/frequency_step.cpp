@@ -43,6 +43,7 @@ void FrequencyStep::run(AnalysisContext& ctx) {
         if (bc.dofs[c]) held[DofMap::dof(n, c)] = true;
   const std::vector<double> f = natural_frequencies_with_held(*system, held, spec_);
   const auto n_free = std::count(held.begin(), held.end(), false);
+  if (!ctx.output().writes()) return;  // another process of a distributed run writes
   const std::filesystem::path file = ctx.output().pvd_file().parent_path() / (spec_.name + "_frequencies.csv");
   std::ofstream out(file);
   out << "# cushion run " << ctx.spec().file.string() << ": step " << spec_.name << ", natural frequencies about t = "

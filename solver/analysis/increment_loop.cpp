@@ -181,7 +181,9 @@ IncrementControl run_increment_loop(AnalysisContext& ctx, const StepSpec& step, 
 
     // Converged: output from the trial state (before commit), then commit.
     const Eigen::VectorXd support = stepper.converged(problem);
-    const bool interrupted = interrupt_requested();
+    // Ctrl-C reaches the processes of a distributed run at different moments: they stop together.
+    const Distribution* d = ctx.distribution();
+    const bool interrupted = d ? d->max(interrupt_requested() ? 1.0 : 0.0) > 0.0 : interrupt_requested();
     if (frame_due(t_end, control.increments() + 1) || interrupted) {
       ++stats.assemblies;
       timed(stats.assembly_time, [&] {

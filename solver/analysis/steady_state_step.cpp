@@ -18,6 +18,7 @@
 #include "solver/dynamics/contact_linearisation.hpp"
 #include "solver/dynamics/modes.hpp"
 #include "solver/dynamics/sweep.hpp"
+#include "solver/distribution.hpp"
 
 namespace cushion::solver {
 
@@ -278,16 +279,27 @@ double drive_amplitude(const SteadyStateSpec& s, double f) {
   return displacement_amplitude(s.acceleration, s.reading, f);
 }
 
-/// Solves frequencies t, t + threads, ... with one SteadyStateSolver (one complex LU) of its own;
-/// logs one line per frequency, stops after any thread's failure.
+/// Process of a distributed run that solves frequency k (0 on one process).
+int frequency_owner(const AnalysisContext& ctx, std::size_t k) {
+  return ctx.distribution() ? static_cast<int>(k % static_cast<std::size_t>(ctx.distribution()->size())) : 0;
+}
+
+/// Solves this process's frequencies (frequency_owner) numbered t, t + threads, ... among them with one
+/// SteadyStateSolver (one complex LU) of its own; logs one line per frequency, stops after any
+/// thread's failure.
 void solve_share(unsigned t, AnalysisContext& ctx, const StepSpec& step, const SweepSetup& setup,
                  SharedSweep& shared) {
   const SteadyStateSpec& s = step.steady_state;
   SweepResult& out = shared.result;
+  const int rank = ctx.distribution() ? ctx.distribution()->rank() : 0;
   try {
     SteadyStateSolver solver(setup.model, s.damping, setup.excitation, setup.groups,
                              SolveMethod{s.iterative, s.gmres_tolerance});
-    for (std::size_t k = t; k < setup.frequencies.size(); k += out.threads) {
+    std::vector<std::size_t> mine;
+    for (std::size_t k = 0; k < setup.frequencies.size(); ++k)
+      if (frequency_owner(ctx, k) == rank) mine.push_back(k);
+    for (std::size_t j = t; j < mine.size(); j += out.threads) {
+      const std::size_t k = mine[j];
       {
         const std::lock_guard<std::mutex> lock(shared.lock);
         if (shared.failure) return;
@@ -327,7 +339,41 @@ void solve_share(unsigned t, AnalysisContext& ctx, const StepSpec& step, const S
   }
 }
 
-/// The sweep: frequency k on thread k % threads (up to 2). A singular dynamic matrix is an
+/// A failure of the sweep as the error the user sees.
+[[noreturn]] void rethrow_sweep_failure(const StepSpec& step, const SweepSetup& setup, std::exception_ptr failure) {
+  try {
+    std::rethrow_exception(failure);
+  } catch (const SingularMatrixError& e) {
+    throw AnalysisError("step '" + step.name + "': singular dynamic matrix (undamped resonance or an "
+                        "unsupported rigid motion: add damping or hold more DOFs): " + std::string(e.what()) +
+                        "; no sweep file written");
+  } catch (const std::invalid_argument& e) {
+    throw InputError(setup.where + ": " + e.what());
+  }
+}
+
+/// Distributed: if any process failed, every process throws the failure of the first one that did.
+void agree_on_failure(const AnalysisContext& ctx, const StepSpec& step, const SweepSetup& setup,
+                      std::exception_ptr failure, const Distribution& d) {
+  std::string message;
+  int kind = 0;  // 1: analysis error, 2: input error
+  if (failure) {
+    try {
+      rethrow_sweep_failure(step, setup, failure);
+    } catch (const InputError& e) {
+      message = e.what(), kind = 2;
+    } catch (const std::exception& e) {
+      message = e.what(), kind = 1;
+    }
+  }
+  const int root = static_cast<int>(d.min(kind ? d.rank() : d.size()));
+  if (root == d.size()) return;
+  message = d.broadcast(message, root);
+  if (static_cast<int>(d.max(d.rank() == root ? kind : 0)) == 2) throw InputError(message);
+  throw AnalysisError(message);
+}
+
+/// The sweep: frequency k on process k % processes (frequency_owner) and there on one of up to 2 threads. A singular dynamic matrix is an
 /// AnalysisError, an invalid excitation an InputError (nothing is written then).
 SweepResult sweep(AnalysisContext& ctx, const StepSpec& step, const SweepSetup& setup) {
   const std::size_t nf = setup.frequencies.size();
@@ -341,16 +387,12 @@ SweepResult sweep(AnalysisContext& ctx, const StepSpec& step, const SweepSetup& 
     pool.emplace_back([&, t] { solve_share(t, ctx, step, setup, shared); });
   solve_share(0, ctx, step, setup, shared);
   for (auto& th : pool) th.join();
-  if (shared.failure) {
-    try {
-      std::rethrow_exception(shared.failure);
-    } catch (const SingularMatrixError& e) {
-      throw AnalysisError("step '" + step.name + "': singular dynamic matrix (undamped resonance or an "
-                          "unsupported rigid motion: add damping or hold more DOFs): " + std::string(e.what()) +
-                          "; no sweep file written");
-    } catch (const std::invalid_argument& e) {
-      throw InputError(setup.where + ": " + e.what());
-    }
+  if (const Distribution* d = ctx.distribution()) {
+    agree_on_failure(ctx, step, setup, shared.failure, *d);
+    share_responses(shared.result.responses, shared.result.solve_time,
+                    [&](std::size_t k) { return frequency_owner(ctx, k); }, *d);
+  } else if (shared.failure) {
+    rethrow_sweep_failure(step, setup, shared.failure);
   }
   return std::move(shared.result);
 }
@@ -409,6 +451,7 @@ void write_prints(const AnalysisContext& ctx, const StepSpec& step, const SweepR
 }
 
 void write_sweep(AnalysisContext& ctx, const StepSpec& step, const SweepSetup& setup, const SweepResult& result) {
+  if (!ctx.output().writes()) return;  // another process of a distributed run writes
   const std::filesystem::path dir = ctx.output().pvd_file().parent_path();
   write_prints(ctx, step, result, dir);
   if (!setup.force_mode) {

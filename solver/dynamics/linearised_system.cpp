@@ -110,6 +110,8 @@ LinearisedSystem::LinearisedSystem(const mesh::Mesh& mesh, const std::vector<Sec
   auto frozen_material = std::make_shared<const FrozenTangent>();
   std::vector<Section> frozen_sections = sections;
   for (auto& s : frozen_sections) s.material = frozen_material;
+  // Replicated on every process of a distributed run: its matrices are used whole (products, LU).
+  options.distribution = nullptr;
   impl_->frozen = std::make_unique<Assembler>(mesh, frozen_sections, DofMap(mesh.num_nodes(), {}), options);
   if (impl_->points.size() != impl_->frozen->num_points_total())
     throw std::invalid_argument("LinearisedSystem: point base states do not match the mesh and sections");

@@ -119,4 +119,35 @@ void write_frequency_frame(ResultSeries& series, const mesh::Mesh& mesh, const L
   series.write_frame(mesh, frame);
 }
 
+void share_responses(std::vector<FrequencyResponse>& responses, std::vector<double>& solve_time,
+                     const std::function<int(std::size_t)>& owner, const Distribution& d) {
+  for (std::size_t k = 0; k < responses.size(); ++k) {
+    FrequencyResponse& r = responses[k];
+    const int root = owner(k);
+    // Packed: frequency, solve time, amplitude, sizes, then u, reaction, displacement (re, im pairs).
+    std::vector<double> packed;
+    if (d.rank() == root) {
+      packed = {r.frequency, solve_time[k], r.amplitude.real(), r.amplitude.imag(), double(r.u.size()),
+                double(r.reaction.size()), double(r.displacement.size())};
+      for (Eigen::Index i = 0; i < r.u.size(); ++i) packed.insert(packed.end(), {r.u(i).real(), r.u(i).imag()});
+      for (const auto* part : {&r.reaction, &r.displacement})
+        for (const std::complex<double>& z : *part) packed.insert(packed.end(), {z.real(), z.imag()});
+    }
+    double size = static_cast<double>(packed.size());
+    d.broadcast(std::span<double>(&size, 1), root);
+    packed.resize(static_cast<std::size_t>(size));
+    d.broadcast(std::span<double>(packed), root);
+    if (d.rank() == root) continue;
+    r.frequency = packed[0], solve_time[k] = packed[1], r.amplitude = {packed[2], packed[3]};
+    const auto nu = static_cast<Eigen::Index>(packed[4]);
+    const auto nr = static_cast<std::size_t>(packed[5]), nd = static_cast<std::size_t>(packed[6]);
+    auto z = [&](std::size_t j) { return std::complex<double>(packed[7 + 2 * j], packed[8 + 2 * j]); };
+    r.u.resize(nu);
+    for (Eigen::Index i = 0; i < nu; ++i) r.u(i) = z(static_cast<std::size_t>(i));
+    r.reaction.resize(nr), r.displacement.resize(nd);
+    for (std::size_t i = 0; i < nr; ++i) r.reaction[i] = z(static_cast<std::size_t>(nu) + i);
+    for (std::size_t i = 0; i < nd; ++i) r.displacement[i] = z(static_cast<std::size_t>(nu) + nr + i);
+  }
+}
+
 }  // namespace cushion::solver::dynamics

@@ -3,10 +3,12 @@
 /// amplitude, dynamic stiffness and nominal dynamic modulus, CSV and VTK (.pvd over frequency) output.
 #include <complex>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "solver/case/steady_state_spec.hpp"
+#include "solver/distribution.hpp"
 #include "solver/dynamics/steady_state.hpp"
 #include "solver/output/vtu_writer.hpp"
 
@@ -41,6 +43,11 @@ struct SweepRow {
 /// driving-point stiffness of the base). Modulus E = K thickness / area (nominal, undeformed).
 enum class Measure { indenter_held, indenter_driven, indenter_free };
 SweepRow make_row(const FrequencyResponse& r, Measure measure, const NominalGeometry& geometry);
+
+/// Distributed sweeps: response k (and its solve time [s]) was computed on process owner(k) only;
+/// afterwards every process holds all of them. Collective.
+void share_responses(std::vector<FrequencyResponse>& responses, std::vector<double>& solve_time,
+                     const std::function<int(std::size_t)>& owner, const Distribution& d);
 
 /// Writes the sweep CSV (units in the column names; phases in degrees in (-180, 180]); `comment`
 /// lines first as "# ...". Throws std::runtime_error if the file cannot be written.

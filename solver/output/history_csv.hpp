@@ -16,6 +16,9 @@ class HistoryWriter {
   /// std::runtime_error if the file cannot be opened.
   HistoryWriter(const std::filesystem::path& file, std::vector<std::string> columns,
                 const std::vector<std::string>& comment = {});
+  /// A writer that checks its rows and writes nothing (the processes of a distributed run that do not
+  /// write files).
+  explicit HistoryWriter(std::vector<std::string> columns);
 
   /// Appends one row: time [s] then `values` (same order and count as the columns), exact
   /// shortest round-trip decimal text; flushed. std::invalid_argument on a count mismatch.

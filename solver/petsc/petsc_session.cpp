@@ -2,6 +2,7 @@
 
 #include <petscsys.h>
 
+#include <cstdlib>
 #include <stdexcept>
 
 #include "solver/linear_solver.hpp"
@@ -50,5 +51,10 @@ Session::~Session() {
 }
 
 bool Session::active() { return running; }
+
+void abort_all(int code) {
+  MPI_Abort(PETSC_COMM_WORLD, code);
+  std::abort();  // MPI_Abort does not return
+}
 
 }  // namespace cushion::solver::petsc

@@ -19,4 +19,8 @@ class Session {
   static bool active();
 };
 
+/// Stops every process of a distributed run at once (MPI_Abort with exit code `code`): for an error met
+/// by one process only, which the others would otherwise wait for. Needs a live Session.
+[[noreturn]] void abort_all(int code);
+
 }  // namespace cushion::solver::petsc

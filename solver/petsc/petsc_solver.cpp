@@ -3,6 +3,7 @@
 #include <petscksp.h>
 
 #include <cctype>
+#include <cmath>
 #include <cstring>
 #include <set>
 #include <sstream>
@@ -51,18 +52,46 @@ class Handle {
   T p_ = nullptr;
 };
 
-/// Where the rows of A go in the PETSc system (PETSc rows without one of A are constrained DOFs).
+/// Where the rows of A go in the PETSc system (PETSc rows without one of A are constrained DOFs). With
+/// a geometry the PETSc nodes are numbered process by process (the nodes of process 0 first, each
+/// process's in ascending order), so each process's rows are one contiguous range.
 struct Layout {
-  PetscInt size = 0;                    ///< PETSc rows
+  PetscInt size = 0;                    ///< PETSc rows (all processes)
+  PetscInt begin = 0, local = 0;        ///< this process's PETSc rows [begin, begin + local)
   PetscInt block = 1;                   ///< 3 with a geometry (x, y, z of one node), else 1
   std::vector<PetscInt> row;            ///< PETSc row of each row of A
-  std::vector<PetscInt> constrained;    ///< PETSc rows with no row of A (diagonal only)
-  std::vector<PetscScalar> coordinates; ///< x, y, z of every node [mm]; empty: no near-null space
+  std::vector<PetscInt> constrained;    ///< this process's PETSc rows with no row of A (diagonal only)
+  std::vector<PetscScalar> coordinates; ///< x, y, z of this process's nodes [mm]; empty: no near-null space
+  bool owns(PetscInt r) const { return r >= begin && r < begin + local; }
 };
+
+/// The layout of the nodes of `dofs`/`nodes` over the processes of `d` (one process if null).
+Layout node_layout(const DofMap& dofs, const std::vector<Eigen::Vector3d>& nodes, const Distribution* d) {
+  const std::size_t n = nodes.size();
+  const int parts = d ? d->size() : 1, rank = d ? d->rank() : 0;
+  auto owner = [d](std::size_t a) { return d ? d->node_owner(static_cast<int>(a)) : 0; };
+  std::vector<PetscInt> first(static_cast<std::size_t>(parts) + 1, 0), petsc_node(n);
+  for (std::size_t a = 0; a < n; ++a) ++first[owner(a) + 1];
+  for (int p = 0; p < parts; ++p) first[p + 1] += first[p];
+  std::vector<PetscInt> next(first.begin(), first.end() - 1);
+  for (std::size_t a = 0; a < n; ++a) petsc_node[a] = next[owner(a)]++;
+  Layout l;
+  l.size = static_cast<PetscInt>(3 * n);
+  l.begin = 3 * first[rank];
+  l.local = 3 * (first[rank + 1] - first[rank]);
+  l.block = 3;
+  for (int dof : dofs.free_dofs()) l.row.push_back(3 * petsc_node[dof / 3] + dof % 3);
+  for (int dof : dofs.constrained_dofs())
+    if (owner(dof / 3) == rank) l.constrained.push_back(3 * petsc_node[dof / 3] + dof % 3);
+  for (std::size_t a = 0; a < n; ++a)
+    if (owner(a) == rank) l.coordinates.insert(l.coordinates.end(), {nodes[a](0), nodes[a](1), nodes[a](2)});
+  return l;
+}
 
 class PetscSolver final : public LinearSolver {
  public:
-  PetscSolver(bool symmetric, const std::string& options) {
+  PetscSolver(bool symmetric, const std::string& options, std::shared_ptr<const Distribution> distribution)
+      : distribution_(std::move(distribution)), comm_(distribution_ ? PETSC_COMM_WORLD : PETSC_COMM_SELF) {
     if (!Session::active()) throw std::logic_error("a PETSc solver needs a live petsc::Session");
     check(PetscOptionsCreate(options_.out()), "PetscOptionsCreate");
     check(PetscOptionsInsertString(options_, default_options), "PetscOptionsInsertString");
@@ -71,7 +100,7 @@ class PetscSolver final : public LinearSolver {
     for (std::string w; words >> w;)
       if (w.size() > 1 && w[0] == '-' && std::isalpha(static_cast<unsigned char>(w[1]))) given_.insert(w);
     const OptionsScope scope(options_);
-    check(KSPCreate(PETSC_COMM_SELF, ksp_.out()), "KSPCreate");
+    check(KSPCreate(comm_, ksp_.out()), "KSPCreate");
     check(KSPSetType(ksp_, symmetric ? KSPCG : KSPGMRES), "KSPSetType");
     PC pc = nullptr;
     check(KSPGetPC(ksp_, &pc), "KSPGetPC");
@@ -89,10 +118,7 @@ class PetscSolver final : public LinearSolver {
 
   void set_geometry(const DofMap& dofs, const std::vector<Eigen::Vector3d>& nodes) override {
     if (dofs.num_dofs() != 3 * nodes.size()) throw std::invalid_argument("PETSc solver: DOF map and nodes differ");
-    layout_ = Layout{static_cast<PetscInt>(dofs.num_dofs()), 3, {}, {}, {}};
-    layout_.row.assign(dofs.free_dofs().begin(), dofs.free_dofs().end());
-    layout_.constrained.assign(dofs.constrained_dofs().begin(), dofs.constrained_dofs().end());
-    for (const Eigen::Vector3d& X : nodes) layout_.coordinates.insert(layout_.coordinates.end(), {X(0), X(1), X(2)});
+    layout_ = node_layout(dofs, nodes, distribution_.get());
     pattern_ = {};  // the next factorize builds the matrix in this layout
   }
 
@@ -180,32 +206,37 @@ class PetscSolver final : public LinearSolver {
     return reuse_limit_ >= 0 ? reuse_limit_ : std::max(2 * fresh_iterations_, fresh_iterations_ + 10);
   }
 
-  /// A new matrix for A's pattern (COO in A's storage order, then the constrained diagonal).
+  /// A new matrix for A's pattern (COO: this process's rows in A's storage order, then its constrained
+  /// diagonal).
   void build_matrix(const Eigen::SparseMatrix<double>& A) {
     if (layout_.size == 0 || static_cast<Eigen::Index>(layout_.row.size()) != A.rows()) {
       if (!layout_.coordinates.empty()) throw std::invalid_argument("PETSc solver: matrix size differs from the DOF map");
-      layout_ = Layout{static_cast<PetscInt>(A.rows()), 1, {}, {}, {}};
+      if (distribution_) throw std::logic_error("PETSc solver: a distributed solve needs set_geometry()");
+      layout_ = Layout{static_cast<PetscInt>(A.rows()), 0, static_cast<PetscInt>(A.rows()), 1, {}, {}, {}};
       for (PetscInt i = 0; i < layout_.size; ++i) layout_.row.push_back(i);
     }
     std::vector<PetscInt> rows, cols;
-    rows.reserve(A.nonZeros() + layout_.constrained.size());
-    cols.reserve(rows.capacity());
+    picked_.clear();
+    Eigen::Index position = 0;
     for (Eigen::Index k = 0; k < A.outerSize(); ++k)
-      for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
-        rows.push_back(layout_.row[it.row()]);
-        cols.push_back(layout_.row[it.col()]);
-      }
+      for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it, ++position)
+        if (layout_.owns(layout_.row[it.row()])) {
+          rows.push_back(layout_.row[it.row()]);
+          cols.push_back(layout_.row[it.col()]);
+          picked_.push_back(position);
+        }
     rows.insert(rows.end(), layout_.constrained.begin(), layout_.constrained.end());
     cols.insert(cols.end(), layout_.constrained.begin(), layout_.constrained.end());
     values_.resize(rows.size());
-    check(MatCreate(PETSC_COMM_SELF, matrix_.out()), "MatCreate");
-    check(MatSetSizes(matrix_, layout_.size, layout_.size, layout_.size, layout_.size), "MatSetSizes");
+    check(MatCreate(comm_, matrix_.out()), "MatCreate");
+    check(MatSetSizes(matrix_, layout_.local, layout_.local, layout_.size, layout_.size), "MatSetSizes");
     check(MatSetType(matrix_, MATAIJ), "MatSetType");
     check(MatSetBlockSize(matrix_, layout_.block), "MatSetBlockSize");
     check(MatSetPreallocationCOO(matrix_, static_cast<PetscCount>(rows.size()), rows.data(), cols.data()),
           "MatSetPreallocationCOO");
     if (!layout_.coordinates.empty()) set_near_null_space();
     check(MatCreateVecs(matrix_, x_.out(), b_.out()), "MatCreateVecs");
+    if (distribution_) check(VecScatterCreateToAll(x_, gather_.out(), x_all_.out()), "VecScatterCreateToAll");
     check(KSPSetOperators(ksp_, matrix_, matrix_), "KSPSetOperators");
     pc_ready_ = false;
     ++analyses_;
@@ -214,19 +245,24 @@ class PetscSolver final : public LinearSolver {
   /// The six rigid-body modes of the nodes as GAMG's near-null space.
   void set_near_null_space() {
     Handle<Vec, VecDestroy> coordinates;
-    check(VecCreateSeqWithArray(PETSC_COMM_SELF, 3, layout_.size, layout_.coordinates.data(), coordinates.out()),
-          "VecCreateSeqWithArray");
+    check(VecCreateMPIWithArray(comm_, 3, layout_.local, layout_.size, layout_.coordinates.data(), coordinates.out()),
+          "VecCreateMPIWithArray");
     Handle<MatNullSpace, MatNullSpaceDestroy> modes;
     check(MatNullSpaceCreateRigidBody(coordinates, modes.out()), "MatNullSpaceCreateRigidBody");
     check(MatSetNearNullSpace(matrix_, modes), "MatSetNearNullSpace");
   }
 
-  /// A's values, then the constrained diagonal: the mean |diagonal| of A (1 if that is 0).
+  /// A's values (this process's rows), then the constrained diagonal: the mean |diagonal| of A over all
+  /// processes (1 if that is 0).
   void set_values(const Eigen::SparseMatrix<double>& A) {
-    const Eigen::Index nnz = A.nonZeros();
-    std::copy(A.valuePtr(), A.valuePtr() + nnz, values_.begin());
-    const double mean = A.rows() ? A.diagonal().cwiseAbs().mean() : 0.0;
-    std::fill(values_.begin() + nnz, values_.end(), mean > 0.0 ? mean : 1.0);
+    for (std::size_t j = 0; j < picked_.size(); ++j) values_[j] = A.valuePtr()[picked_[j]];
+    const Eigen::VectorXd diagonal = A.diagonal();
+    double sum_count[2] = {0.0, 0.0};
+    for (Eigen::Index i = 0; i < diagonal.size(); ++i)
+      if (layout_.owns(layout_.row[i])) sum_count[0] += std::abs(diagonal(i)), sum_count[1] += 1.0;
+    if (distribution_) distribution_->sum(sum_count);
+    const double mean = sum_count[1] > 0.0 ? sum_count[0] / sum_count[1] : 0.0;
+    std::fill(values_.begin() + static_cast<std::ptrdiff_t>(picked_.size()), values_.end(), mean > 0.0 ? mean : 1.0);
     check(MatSetValuesCOO(matrix_, values_.data(), INSERT_VALUES), "MatSetValuesCOO");
   }
 
@@ -241,7 +277,8 @@ class PetscSolver final : public LinearSolver {
     check(VecZeroEntries(b_), "VecZeroEntries");
     PetscScalar* v = nullptr;
     check(VecGetArray(b_, &v), "VecGetArray");
-    for (Eigen::Index i = 0; i < b.size(); ++i) v[layout_.row[i]] = b(i);
+    for (Eigen::Index i = 0; i < b.size(); ++i)
+      if (layout_.owns(layout_.row[i])) v[layout_.row[i] - layout_.begin] = b(i);
     check(VecRestoreArray(b_, &v), "VecRestoreArray");
   }
 
@@ -253,23 +290,35 @@ class PetscSolver final : public LinearSolver {
     iterations_ = iterations;
   }
 
+  /// The solution on every process (gathered from all of them in a distributed solve).
   Eigen::VectorXd solution() const {
+    Vec whole = x_;
+    if (distribution_) {
+      check(VecScatterBegin(gather_, x_, x_all_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+      check(VecScatterEnd(gather_, x_, x_all_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+      whole = x_all_;
+    }
     Eigen::VectorXd x(static_cast<Eigen::Index>(layout_.row.size()));
     const PetscScalar* v = nullptr;
-    check(VecGetArrayRead(x_, &v), "VecGetArrayRead");
+    check(VecGetArrayRead(whole, &v), "VecGetArrayRead");
     for (Eigen::Index i = 0; i < x.size(); ++i) x(i) = v[layout_.row[i]];
-    check(VecRestoreArrayRead(x_, &v), "VecRestoreArrayRead");
+    check(VecRestoreArrayRead(whole, &v), "VecRestoreArrayRead");
     if (!x.allFinite()) throw LinearSolveError(method() + ": the solution is not finite");
     return x;
   }
 
+  std::shared_ptr<const Distribution> distribution_;  ///< null: one process
+  MPI_Comm comm_;
   Handle<PetscOptions, PetscOptionsDestroy> options_;
   std::set<std::string> given_;  ///< option names in the caller's string
   Handle<KSP, KSPDestroy> ksp_;
   Handle<Mat, MatDestroy> matrix_;
   Handle<Vec, VecDestroy> x_, b_;
+  Handle<VecScatter, VecScatterDestroy> gather_;  ///< distributed: x_ to x_all_ on every process
+  Handle<Vec, VecDestroy> x_all_;
   Layout layout_;
   PatternSignature<double> pattern_;
+  std::vector<Eigen::Index> picked_;  ///< positions in A's value array of this process's rows
   std::vector<PetscScalar> values_;  ///< COO values, in the order given to MatSetPreallocationCOO
   bool preonly_ = false;             ///< -ksp_type preonly: the preconditioner is the solve (never reused)
   long reuse_limit_ = -1;            ///< -cushion_pc_reuse_max_it, -1: automatic
@@ -322,8 +371,9 @@ struct ProbeProblem {
 
 }  // namespace
 
-std::unique_ptr<LinearSolver> make_solver(bool symmetric, const std::string& options) {
-  return std::make_unique<PetscSolver>(symmetric, options);
+std::unique_ptr<LinearSolver> make_solver(bool symmetric, const std::string& options,
+                                          std::shared_ptr<const Distribution> distribution) {
+  return std::make_unique<PetscSolver>(symmetric, options, std::move(distribution));
 }
 
 std::string options_problem(bool symmetric, const std::string& options) {
@@ -332,7 +382,7 @@ std::string options_problem(bool symmetric, const std::string& options) {
     ProbeProblem probe;
     const DofMap dofs(probe.nodes.size(), probe.constrained);
     probe.assemble(dofs);
-    PetscSolver solver(symmetric, options);
+    PetscSolver solver(symmetric, options, nullptr);
     solver.set_geometry(dofs, probe.nodes);
     solver.factorize(probe.A);
     try {

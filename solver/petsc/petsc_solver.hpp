@@ -19,10 +19,13 @@
 /// solve with a reused preconditioner that does not converge is repeated once with a new one. No
 /// reuse with "-ksp_type preonly" (an old LU would silently solve with an old tangent).
 ///
-/// Serial: PETSC_COMM_SELF, one process. Needs a live petsc::Session.
+/// One process (PETSC_COMM_SELF), or distributed over PETSC_COMM_WORLD with a Distribution: each
+/// process gives PETSc the rows of the nodes it owns (an MPIAIJ matrix, its nodes numbered
+/// contiguously), and every process gets the whole solution. Needs a live petsc::Session.
 #include <memory>
 #include <string>
 
+#include "solver/distribution.hpp"
 #include "solver/linear_solver.hpp"
 
 namespace cushion::solver::petsc {
@@ -30,7 +33,9 @@ namespace cushion::solver::petsc {
 /// A PETSc solver; `symmetric`: A is symmetric (CG by default, else GMRES). `options`: PETSc options
 /// ("-ksp_type cg -pc_type gamg ...") over the defaults; check them first with options_problem().
 /// Throws LinearSolveError if PETSc rejects them.
-std::unique_ptr<LinearSolver> make_solver(bool symmetric, const std::string& options);
+/// `distribution`: a distributed run (set_geometry() is then required), nullptr: one process.
+std::unique_ptr<LinearSolver> make_solver(bool symmetric, const std::string& options,
+                                          std::shared_ptr<const Distribution> distribution = nullptr);
 
 /// Why `options` cannot be used, or "" if they can: a PETSc error while setting up and solving a
 /// small elasticity-like problem with them (unknown KSP or PC type, bad value, missing package), or

@@ -8,6 +8,7 @@
 //
 //   case file                                  run     checks
 //   cube_compression/case.json                 full    RF3 at 15/30/32/47/62 s (README table), 65 frames
+//   cube_compression/case_petsc.json           full    the same with the PETSc solver (skipped without PETSc)
 //   sitbar_quasistatic/cube_same_rate.json     full    nominal stress at 75 % (README Fig. 11 text: 32 kPa)
 //   dynamic_sine/case.json                     full    sweep K, phase (README); dynamic vs sweep (requirement:
 //                                                      1 % and 0.5 deg); energy balance
@@ -149,6 +150,7 @@ std::complex<double> phasor(const std::vector<double>& t, const std::vector<doub
 TEST(ShippedCases, EveryCaseFileIsCovered) {
   const std::set<std::string> covered = {"calculix_check/case.json",
                                          "cube_compression/case.json",
+                                         "cube_compression/case_petsc.json",
                                          "dynamic_sine/case.json",
                                          "iso2439_hardness/case.json",
                                          "sitbar_quasistatic/case.json",
@@ -169,8 +171,7 @@ TEST(ShippedCases, EveryCaseFileIsCovered) {
 }
 
 // Full case (about 1 s CPU). README table of top.RF3 (quarter model), printed to 4 digits: 0.05 % + 0.01 N.
-TEST(ShippedCases, CubeCompression) {
-  const fs::path out = run_case(shipped_case("cube_compression/case.json"), cli_test::scratch_dir("cushion_cases_"));
+void expect_cube_compression_table(const fs::path& out) {
   const cushion::CsvTable h = cushion::read_csv(out / "history.csv");
   expect_finite(h);
   const std::vector<std::array<double, 3>> table = {
@@ -180,6 +181,17 @@ TEST(ShippedCases, CubeCompression) {
     EXPECT_NEAR(at_time(h, "top.RF3_N", t), rf, 5e-4 * std::abs(rf) + 0.01) << "t = " << t;
   }
   EXPECT_EQ(frames(out / "results.pvd"), 65);
+}
+
+TEST(ShippedCases, CubeCompression) {
+  expect_cube_compression_table(run_case(shipped_case("cube_compression/case.json"), cli_test::scratch_dir("cushion_cases_")));
+}
+
+// The PETSc variant (CG + GAMG to relative 1e-8): the same table and tolerances.
+TEST(ShippedCases, CubeCompressionWithPetsc) {
+  if (!CUSHION_PETSC_BUILT) GTEST_SKIP() << "this cushion is built without PETSc";
+  expect_cube_compression_table(
+      run_case(shipped_case("cube_compression/case_petsc.json"), cli_test::scratch_dir("cushion_cases_")));
 }
 
 // Full case (about 1 s CPU). Fig. 11 companion: the cube at 30 mm/min reaches a nominal stress of 32 kPa at

@@ -21,9 +21,9 @@ struct CommandRun {
 /// The path in double quotes, for the shell.
 inline std::string quoted(const std::filesystem::path& path) { return "\"" + path.string() + "\""; }
 
-/// Runs `cushion ARGUMENTS` with stderr merged into stdout.
-inline CommandRun run_cushion(const std::string& arguments) {
-  const std::string command = quoted(CUSHION_BINARY) + " " + arguments + " 2>&1";
+/// Runs a shell command with stderr merged into stdout.
+inline CommandRun run_command(const std::string& shell_command) {
+  const std::string command = shell_command + " 2>&1";
   CommandRun run;
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return run;
@@ -33,6 +33,9 @@ inline CommandRun run_cushion(const std::string& arguments) {
   run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return run;
 }
+
+/// Runs `cushion ARGUMENTS` with stderr merged into stdout.
+inline CommandRun run_cushion(const std::string& arguments) { return run_command(quoted(CUSHION_BINARY) + " " + arguments); }
 
 /// An empty folder <tmp>/<prefix><name of the running test>, fresh for each test.
 inline std::filesystem::path scratch_dir(const std::string& prefix) {
