@@ -56,6 +56,13 @@ LinearSolverFactory linear_solver_factory(const CaseSpec& spec, std::shared_ptr<
   return direct(fbar ? LinearSolverKind::lu : LinearSolverKind::cholesky_or_lu);
 }
 
+/// With PETSc, iterative sweeps precondition with the case's PETSc solver on each process alone (the
+/// frequencies are divided between the processes); otherwise with CHOLMOD (empty).
+LinearSolverFactory sweep_preconditioner_factory(const CaseSpec& spec) {
+  if (spec.solver.linear_solver != SolverSpec::LinearSolver::petsc) return nullptr;
+  return linear_solver_factory(spec, nullptr);
+}
+
 std::vector<Section> case_sections(const LoadedCase& loaded) {
   Section s;
   s.name = loaded.material.spec.name;
@@ -104,7 +111,7 @@ RunSummary run_analysis(const LoadedCase& loaded, const RunOptions& options) {
   if (writes && !log) throw std::runtime_error("cannot write " + log_file.string());
   log << "cushion run " << spec.file.string() << "\nmaterial: " << loaded.material.model->describe() << "\n";
   AnalysisContext ctx(loaded.mesh, spec, case_sections(loaded), std::move(make_linear), threads, output, log,
-                      options.progress, options.distribution);
+                      options.progress, options.distribution, sweep_preconditioner_factory(spec));
   if (options.distribution)
     log << "distributed over " << options.distribution->size() << " processes (this log: process 0)\n";
 

@@ -24,9 +24,11 @@ Eigen::VectorXd TimedLinearSolver::solve(const Eigen::VectorXd& b) {
 AnalysisContext::AnalysisContext(const mesh::Mesh& mesh, const CaseSpec& spec, std::vector<Section> sections,
                                  LinearSolverFactory make_linear, unsigned threads, AnalysisOutput& output,
                                  std::ostream& log, std::ostream* progress,
-                                 std::shared_ptr<const Distribution> distribution)
+                                 std::shared_ptr<const Distribution> distribution,
+                                 LinearSolverFactory make_sweep_preconditioner)
     : mesh_(mesh), spec_(spec), output_(output), log_(log), progress_(progress), sections_(std::move(sections)),
-      make_linear_(std::move(make_linear)), threads_(threads), distribution_(std::move(distribution)),
+      make_linear_(std::move(make_linear)), make_sweep_preconditioner_(std::move(make_sweep_preconditioner)),
+      threads_(threads), distribution_(std::move(distribution)),
       start_(std::chrono::steady_clock::now()) {
   model_.u = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(mesh.num_nodes()));
   model_.f_int = model_.u;

@@ -92,7 +92,8 @@ class AnalysisContext {
   /// material (here: the case's).
   AnalysisContext(const mesh::Mesh& mesh, const CaseSpec& spec, std::vector<Section> sections,
                   LinearSolverFactory make_linear, unsigned threads, AnalysisOutput& output, std::ostream& log,
-                  std::ostream* progress, std::shared_ptr<const Distribution> distribution = nullptr);
+                  std::ostream* progress, std::shared_ptr<const Distribution> distribution = nullptr,
+                  LinearSolverFactory make_sweep_preconditioner = nullptr);
 
   const mesh::Mesh& mesh() const { return mesh_; }  ///< the model's mesh (reference, mm)
   const CaseSpec& spec() const { return spec_; }     ///< the case being run
@@ -119,6 +120,9 @@ class AnalysisContext {
   /// The contact `name` if a step has used it, else nullptr.
   const ContactContributor* find_contact(const std::string& name) const;
 
+  /// The solver of the real preconditioner of iterative steady-state sweeps on this process alone (the
+  /// case's PETSc options), or empty: CHOLMOD (SolveMethod::preconditioner).
+  const LinearSolverFactory& sweep_preconditioner() const { return make_sweep_preconditioner_; }
   /// The distribution of a distributed run (its assemblers evaluate this process's elements), or nullptr.
   const Distribution* distribution() const { return distribution_.get(); }
 
@@ -134,7 +138,7 @@ class AnalysisContext {
   ModelState model_;
   SolverStats stats_;
   std::vector<Section> sections_;
-  LinearSolverFactory make_linear_;
+  LinearSolverFactory make_linear_, make_sweep_preconditioner_;
   unsigned threads_;
   std::shared_ptr<const Distribution> distribution_;
   std::vector<std::unique_ptr<System>> systems_;

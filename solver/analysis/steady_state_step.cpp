@@ -294,7 +294,7 @@ void solve_share(unsigned t, AnalysisContext& ctx, const StepSpec& step, const S
   const int rank = ctx.distribution() ? ctx.distribution()->rank() : 0;
   try {
     SteadyStateSolver solver(setup.model, s.damping, setup.excitation, setup.groups,
-                             SolveMethod{s.iterative, s.gmres_tolerance});
+                             SolveMethod{s.iterative, s.gmres_tolerance, 60, ctx.sweep_preconditioner(), &ctx.mesh().nodes});
     std::vector<std::size_t> mine;
     for (std::size_t k = 0; k < setup.frequencies.size(); ++k)
       if (frequency_owner(ctx, k) == rank) mine.push_back(k);
@@ -373,13 +373,17 @@ void agree_on_failure(const AnalysisContext& ctx, const StepSpec& step, const Sw
   throw AnalysisError(message);
 }
 
-/// The sweep: frequency k on process k % processes (frequency_owner) and there on one of up to 2 threads. A singular dynamic matrix is an
+/// The sweep: frequency k on process k % processes (frequency_owner) and there on one of up to 2 threads
+/// (one with a PETSc preconditioner). A singular dynamic matrix is an
 /// AnalysisError, an invalid excitation an InputError (nothing is written then).
 SweepResult sweep(AnalysisContext& ctx, const StepSpec& step, const SweepSetup& setup) {
   const std::size_t nf = setup.frequencies.size();
   SharedSweep shared;
-  shared.result.threads =
-      static_cast<unsigned>(std::min<std::size_t>({2, nf, std::max(1u, std::thread::hardware_concurrency())}));
+  // PETSc is not thread-safe: a PETSc preconditioner keeps the sweep on one thread per process.
+  const bool petsc = step.steady_state.iterative && ctx.sweep_preconditioner();
+  shared.result.threads = petsc ? 1u
+                                : static_cast<unsigned>(std::min<std::size_t>(
+                                      {2, nf, std::max(1u, std::thread::hardware_concurrency())}));
   shared.result.responses.resize(nf);
   shared.result.solve_time.assign(nf, 0.0);
   std::vector<std::thread> pool;
@@ -476,7 +480,10 @@ void log_done(AnalysisContext& ctx, const StepSpec& step, const SweepResult& res
   for (double t : result.solve_time) total += t;
   ctx.log() << "step '" << step.name << "' done: " << nf << " frequencies on " << result.threads << " threads, "
             << dofs << " DOFs, " << total / nf << " s per frequency (thread time), wall " << wall << " s; "
-            << (step.steady_state.iterative ? "GMRES + real Cholesky" : "complex LU") << ": "
+            << (!step.steady_state.iterative ? "complex LU"
+                : ctx.sweep_preconditioner() ? "GMRES + PETSc preconditioner of Re D"
+                                             : "GMRES + real Cholesky")
+            << ": "
             << cost.real_factorisations << " real and " << cost.complex_factorisations
             << " complex factorisations (" << cost.factorisation_time << " s), " << cost.iterations
             << " GMRES iterations, solves " << cost.solve_time << " s, assembly " << cost.assembly_time

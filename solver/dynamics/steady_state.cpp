@@ -4,6 +4,8 @@
 #include <stdexcept>
 
 #include <Eigen/CholmodSupport>
+
+#include "solver/dof_map.hpp"
 #include <unsupported/Eigen/IterativeSolvers>
 
 namespace cushion::solver::dynamics {
@@ -32,24 +34,76 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-/// Eigen preconditioner applying a real Cholesky factor to the real and imaginary parts.
-class RealFactorPreconditioner {
+/// P^-1 of a real matrix P = Re D_ff(w_ref), applied to the columns of B.
+class RealPreconditioner {
  public:
-  using Factor = Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>;
+  virtual ~RealPreconditioner() = default;
+  /// Prepares P^-1; false if P cannot serve (not positive definite, or the solver failed on it).
+  virtual bool set(const SparseMatrix& P) = 0;
+  /// P^-1 B; throws LinearSolveError if an iterative solver does not converge.
+  virtual Eigen::MatrixXd apply(const Eigen::MatrixXd& B) = 0;
+  /// Where P's unknowns sit (LinearSolver::set_geometry); ignored by a factorisation.
+  virtual void set_geometry(const DofMap&, const std::vector<Eigen::Vector3d>&) {}
+};
+
+/// A CHOLMOD supernodal Cholesky factor of P (lower triangle).
+class CholmodPreconditioner final : public RealPreconditioner {
+ public:
+  CholmodPreconditioner() { factor_.cholmod().print = 0; }
+  bool set(const SparseMatrix& P) override {
+    factor_.compute(P);
+    return factor_.info() == Eigen::Success;
+  }
+  Eigen::MatrixXd apply(const Eigen::MatrixXd& B) override { return factor_.solve(B); }
+
+ private:
+  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> factor_;
+};
+
+/// Any LinearSolver (e.g. PETSc CG + algebraic multigrid) solving with P, one column at a time.
+class SolverPreconditioner final : public RealPreconditioner {
+ public:
+  explicit SolverPreconditioner(std::unique_ptr<LinearSolver> solver) : solver_(std::move(solver)) {}
+  bool set(const SparseMatrix& P) override {
+    try {
+      solver_->factorize(P);
+      return true;
+    } catch (const SingularMatrixError&) {
+      return false;
+    } catch (const LinearSolveError&) {
+      return false;
+    }
+  }
+  Eigen::MatrixXd apply(const Eigen::MatrixXd& B) override {
+    Eigen::MatrixXd X(B.rows(), B.cols());
+    for (Eigen::Index c = 0; c < B.cols(); ++c) X.col(c) = solver_->solve(B.col(c));
+    return X;
+  }
+  void set_geometry(const DofMap& dofs, const std::vector<Eigen::Vector3d>& nodes) override {
+    solver_->set_geometry(dofs, nodes);
+  }
+
+ private:
+  std::unique_ptr<LinearSolver> solver_;
+};
+
+/// Eigen's preconditioner interface over a RealPreconditioner: P^-1 on the real and imaginary parts.
+class GmresPreconditioner {
+ public:
   template <class M>
-  RealFactorPreconditioner& analyzePattern(const M&) { return *this; }
+  GmresPreconditioner& analyzePattern(const M&) { return *this; }
   template <class M>
-  RealFactorPreconditioner& factorize(const M&) { return *this; }
+  GmresPreconditioner& factorize(const M&) { return *this; }
   template <class M>
-  RealFactorPreconditioner& compute(const M&) { return *this; }
+  GmresPreconditioner& compute(const M&) { return *this; }
   Eigen::ComputationInfo info() const { return Eigen::Success; }
-  void set(const Factor* f) { f_ = f; }
+  void set(RealPreconditioner* p) { p_ = p; }
   template <class V>
   Eigen::VectorXcd solve(const Eigen::MatrixBase<V>& b) const {
     Eigen::MatrixXd B(b.rows(), 2);
     B.col(0) = b.real();
     B.col(1) = b.imag();
-    const Eigen::MatrixXd X = f_->solve(B);
+    const Eigen::MatrixXd X = p_->apply(B);
     Eigen::VectorXcd x(b.rows());
     x.real() = X.col(0);
     x.imag() = X.col(1);
@@ -57,15 +111,14 @@ class RealFactorPreconditioner {
   }
 
  private:
-  const Factor* f_ = nullptr;
+  RealPreconditioner* p_ = nullptr;
 };
 
 }  // namespace
 
 struct SteadyStateSolver::Preconditioner {
-  RealFactorPreconditioner::Factor factor;
+  std::unique_ptr<RealPreconditioner> p;
   bool valid = false;
-  Preconditioner() { factor.cholmod().print = 0; }
 };
 
 SteadyStateSolver::~SteadyStateSolver() = default;
@@ -74,6 +127,8 @@ SteadyStateSolver::SteadyStateSolver(HarmonicModel model, Damping damping, Excit
                                      std::vector<DofGroup> groups, SolveMethod method)
     : model_(std::move(model)), damping_(damping), groups_(std::move(groups)), method_(method),
       precond_(std::make_unique<Preconditioner>()) {
+  precond_->p = std::make_unique<CholmodPreconditioner>();
+  if (method_.preconditioner) precond_->p = std::make_unique<SolverPreconditioner>(method_.preconditioner());
   if (!model_.system) throw std::invalid_argument("steady-state: no linearised system");
   const auto missing = model_.system->sections_without_density();
   if (!missing.empty())
@@ -127,6 +182,13 @@ SteadyStateSolver::SteadyStateSolver(HarmonicModel model, Damping damping, Excit
     throw std::invalid_argument("steady-state: extra stiffness must be n x n");
   Pf_ = selection(free_, n_);
   Pc_ = selection(constrained_, n_);
+  // Algebraic multigrid builds its near-null space (rigid-body modes) from the nodes: when the free
+  // DOFs are node DOFs only.
+  if (method_.geometry && model_.extra_dofs == 0) {
+    std::vector<bool> held(n_, true);
+    for (int d : free_) held[d] = false;
+    precond_->p->set_geometry(DofMap(n_ / 3, held), *method_.geometry);
+  }
 }
 
 ComplexMatrix SteadyStateSolver::dynamic_matrix(double omega) const {
@@ -187,18 +249,18 @@ bool SteadyStateSolver::solve_iterative(const ComplexMatrix& Dff, const Eigen::V
   for (int attempt = 0; attempt < 2; ++attempt) {
     if (!precond_->valid || attempt == 1) {  // P = Re D_ff at this frequency
       const auto t0 = std::chrono::steady_clock::now();
-      const SparseMatrix P = Dff.real();
-      precond_->factor.compute(P);
+      SparseMatrix P = Dff.real();
+      P.makeCompressed();
+      precond_->valid = precond_->p->set(P);
       ++stats_.real_factorisations;
       stats_.factorisation_time += seconds_since(t0);
-      precond_->valid = precond_->factor.info() == Eigen::Success;
       if (!precond_->valid) return false;  // not positive definite (above a resonance): LU
     }
     const auto t0 = std::chrono::steady_clock::now();
-    Eigen::GMRES<ComplexMatrix, RealFactorPreconditioner> gmres;
+    Eigen::GMRES<ComplexMatrix, GmresPreconditioner> gmres;
     gmres.set_restart(method_.max_iterations);
     gmres.setMaxIterations(method_.max_iterations);
-    gmres.preconditioner().set(&precond_->factor);
+    gmres.preconditioner().set(precond_->p.get());
     gmres.compute(Dff);
     // Eigen's GMRES stops on the preconditioned residual: passes from the last x with the tolerance
     // tightened until the TRUE relative residual |b - D x| / |b| meets method_.tolerance.
@@ -207,7 +269,11 @@ bool SteadyStateSolver::solve_iterative(const ComplexMatrix& Dff, const Eigen::V
     bool ok = false;
     for (int pass = 0; pass < 4 && !ok; ++pass) {
       gmres.setTolerance(tol);
-      x = gmres.solveWithGuess(b, x);
+      try {
+        x = gmres.solveWithGuess(b, x);
+      } catch (const LinearSolveError&) {
+        break;  // the preconditioner's own Krylov solve did not converge: as GMRES failing
+      }
       stats_.iterations += static_cast<int>(gmres.iterations());
       if (gmres.info() != Eigen::Success || !x.allFinite()) break;
       const double residual = (b - Dff * x).norm() / b.norm();

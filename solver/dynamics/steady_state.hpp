@@ -20,6 +20,8 @@
 /// GMRES converges in a few tens of iterations; each iteration costs one complex product and one pair
 /// of real triangular solves, far less than a complex factorisation.
 #include <complex>
+#include <functional>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -64,9 +66,14 @@ struct FrequencyResponse {
 
 /// How D_ff u_f = b is solved at each frequency (see above).
 struct SolveMethod {
-  bool iterative = false;      ///< GMRES + real Cholesky preconditioner (else complex LU)
+  bool iterative = false;      ///< GMRES + real preconditioner P = Re D_ff (else complex LU)
   double tolerance = 1e-10;    ///< true relative residual |b - D x| / |b| [-]
   int max_iterations = 60;     ///< before the preconditioner is refreshed / the LU fallback
+  /// The solver applying P^-1 (iterative only): e.g. PETSc CG + algebraic multigrid on one process
+  /// (solver/petsc/). Empty: a CHOLMOD Cholesky factor of P. Its geometry is set when the model has
+  /// no appended DOFs (nodes of `geometry`).
+  std::function<std::unique_ptr<LinearSolver>()> preconditioner;
+  const std::vector<Eigen::Vector3d>* geometry = nullptr;  ///< reference node coordinates [mm]
 };
 
 /// Cost counters of a solver (wall seconds, summed over its frequencies).

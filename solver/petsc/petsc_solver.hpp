@@ -3,7 +3,8 @@
 ///
 /// Defaults, overridden by the case's "petsc_options": symmetric tangents CG, unsymmetric ones
 /// (F-bar, friction) GMRES; preconditioner GAMG (smoothed-aggregation algebraic multigrid) with the
-/// six rigid-body modes from the nodal coordinates as near-null space (set_geometry); relative
+/// six rigid-body modes from the nodal coordinates as near-null space (set_geometry), SOR level smoothers
+/// (petsc_solver.cpp: where they fail); relative
 /// tolerance 1e-8 on PETSc's residual norm, at most 1000 iterations. A direct solve is
 /// "-ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps" (Debian's PETSc has MUMPS).
 ///

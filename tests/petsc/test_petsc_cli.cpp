@@ -4,6 +4,8 @@
 // Krylov method that does not converge stops the run with exit 1 and complete frames.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -101,6 +103,78 @@ TEST(PetscRun, KrylovMethodThatDoesNotConvergeStopsWithCompleteFrames) {
   EXPECT_NE(run.output.find("frames written so far are complete"), std::string::npos) << run.output;
   EXPECT_TRUE(fs::exists(dir / "out" / "results.pvd"));
   EXPECT_TRUE(fs::exists(dir / "out" / "results_0000.vtu"));  // the undeformed state at t = 0
+}
+
+/// The SIT-BAR sweep case on a 6 x 6 x 4 mesh, 1 to 20 Hz in 4 Hz steps, with the given solver settings.
+fs::path small_sweep_case(const fs::path& dir, const nlohmann::json& solver) {
+  const fs::path shipped = fs::path(CUSHION_SOURCE_DIR) / "cases" / "sitbar_sweep";
+  std::ifstream in(shipped / "case.json");
+  nlohmann::json c = nlohmann::json::parse(in);
+  c["material"]["file"] = fs::weakly_canonical(shipped / c["material"]["file"].get<std::string>()).string();
+  c["mesh"]["generate"]["elements"] = {6, 6, 4};
+  for (auto& s : c["steps"])
+    if (s["type"] == "steady_state") s["steady_state"]["frequencies"] = {{"start_Hz", 1}, {"end_Hz", 20}, {"step_Hz", 4}};
+  c["solver"] = solver;
+  fs::create_directories(dir);
+  std::ofstream(dir / "case.json") << c.dump(2);
+  return dir / "case.json";
+}
+
+/// (|E*| [kPa], phase [deg]) per row of a sweep CSV.
+std::vector<std::pair<double, double>> modulus_and_phase(const fs::path& csv) {
+  std::ifstream in(csv);
+  std::vector<std::string> header;
+  std::vector<std::pair<double, double>> rows;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<std::string> cells;
+    std::stringstream s(line);
+    for (std::string cell; std::getline(s, cell, ',');) cells.push_back(cell);
+    if (header.empty()) {
+      header = cells;
+      continue;
+    }
+    auto at = [&](const std::string& name) {
+      const auto it = std::find(header.begin(), header.end(), name);
+      return it == header.end() ? NAN : std::stod(cells[static_cast<std::size_t>(it - header.begin())]);
+    };
+    rows.emplace_back(at("dynamic_modulus_kPa"), at("phase_deg"));
+  }
+  return rows;
+}
+
+// Requirement (issue 14, sweeps on the PETSc engine): with "linear_solver": "petsc" the iterative sweep's
+// real preconditioner P = Re D_ff is PETSc's CG + GAMG instead of a CHOLMOD factor, and the sweep gives the
+// CHOLMOD-preconditioned one's |E*| and phase to 1e-6 (both solve to a true relative residual of 1e-10).
+TEST(PetscRun, SweepPreconditionedByPetscGivesTheCholmodPreconditionedSweep) {
+  const fs::path dir = cli_test::scratch_dir("cushion_petsc_");
+  const fs::path petsc = small_sweep_case(dir / "p", {{"linear_solver", "petsc"}, {"petsc_options", "-ksp_rtol 1e-12"}});
+  const fs::path direct = small_sweep_case(dir / "c", {{"linear_solver", "auto"}});
+  const auto run_p = run_cushion("run " + cli_test::quoted(petsc) + " -o " + cli_test::quoted(dir / "out_p") + " --quiet");
+  const auto run_c = run_cushion("run " + cli_test::quoted(direct) + " -o " + cli_test::quoted(dir / "out_c") + " --quiet");
+  ASSERT_EQ(run_p.exit_code, 0) << run_p.output;
+  ASSERT_EQ(run_c.exit_code, 0) << run_c.output;
+  for (const char* sweep : {"sweep_rayleigh_sweep.csv", "sweep_no_rayleigh_sweep.csv"}) {
+    const auto p = modulus_and_phase(dir / "out_p" / sweep), c = modulus_and_phase(dir / "out_c" / sweep);
+    ASSERT_EQ(p.size(), 5u) << sweep;
+    ASSERT_EQ(c.size(), 5u) << sweep;
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      ASSERT_TRUE(std::isfinite(c[i].first) && std::isfinite(c[i].second)) << sweep << " row " << i;
+      EXPECT_NEAR(p[i].first, c[i].first, 1e-6 * std::abs(c[i].first)) << sweep << " row " << i;
+      EXPECT_NEAR(p[i].second, c[i].second, 1e-6 * std::abs(c[i].second) + 1e-9) << sweep << " row " << i;
+    }
+  }
+  // The sweeps were preconditioned by PETSc, on one thread, and GMRES converged (no complex LU fallback).
+  std::ifstream log(dir / "out_p" / "solver.log");
+  const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  for (const char* step : {"step 'sweep_rayleigh' done", "step 'sweep_no_rayleigh' done"}) {
+    const std::size_t at = text.find(step);
+    ASSERT_NE(at, std::string::npos) << step;
+    const std::string line = text.substr(at, text.find('\n', at) - at);
+    EXPECT_NE(line.find("on 1 threads"), std::string::npos) << line;
+    EXPECT_NE(line.find("GMRES + PETSc preconditioner"), std::string::npos) << line;
+    EXPECT_NE(line.find(" 0 complex factorisations"), std::string::npos) << line;
+  }
 }
 
 }  // namespace

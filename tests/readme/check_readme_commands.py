@@ -31,6 +31,8 @@ EXPENSIVE = {
     "OPENBLAS_NUM_THREADS=1 bash tools/bench_cube.sh": "benchmark, minutes",
     "build/tests/bench_solver": "benchmark (and N is a placeholder)",
     "bash tools/bench_linear.sh": "benchmark, up to about 1 M dofs; needs a build with PETSc",
+    "bash tools/bench_indentation_solvers.sh": "benchmark, about 20 min",
+    "BENCH_SOLVER=petsc bash tools/bench_cube.sh": "benchmark, about 1 h at 1 M dofs",
     "bash tools/bench_diagnose.sh": "benchmark, hours",
     "bash tools/calculix_indentation.sh": "needs calculix-ccx, minutes",
     "build/tools/cushion run cases/sitbar_quasistatic/case.json": "about 2 min on 2 cores (the case runs shortened in ctest -L cases)",
