@@ -27,6 +27,11 @@ namespace {
 /// solves those but failed a small SIT-BAR case that SOR solves: no default serves all yet.
 constexpr const char* default_options = "-mg_levels_ksp_type richardson -mg_levels_pc_type sor";
 
+/// What replaces the SOR smoothers after they failed (switch_smoothers).
+constexpr const char* fallback_smoothers =
+    "-mg_levels_ksp_type chebyshev -mg_levels_pc_type jacobi -pc_gamg_esteig_ksp_type cg "
+    "-pc_gamg_esteig_ksp_max_it 20 -mg_levels_ksp_chebyshev_esteig 0,0.1,0,1.2 -pc_gamg_threshold 0.01";
+
 /// A Krylov solve that ended without converging (PETSc itself reported no error).
 class NotConverged : public LinearSolveError {
  public:
@@ -104,13 +109,7 @@ class PetscSolver final : public LinearSolver {
     for (std::string w; words >> w;)
       if (w.size() > 1 && w[0] == '-' && std::isalpha(static_cast<unsigned char>(w[1]))) given_.insert(w);
     const OptionsScope scope(options_);
-    check(KSPCreate(comm_, ksp_.out()), "KSPCreate");
-    check(KSPSetType(ksp_, symmetric ? KSPCG : KSPGMRES), "KSPSetType");
-    PC pc = nullptr;
-    check(KSPGetPC(ksp_, &pc), "KSPGetPC");
-    check(PCSetType(pc, PCGAMG), "PCSetType");
-    check(KSPSetTolerances(ksp_, 1e-8, PETSC_DEFAULT, PETSC_DEFAULT, 1000), "KSPSetTolerances");
-    check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
+    create_ksp(symmetric ? KSPCG : KSPGMRES);
     PetscInt limit = -1;
     PetscBool set = PETSC_FALSE;
     check(PetscOptionsGetInt(options_, nullptr, "-cushion_pc_reuse_max_it", &limit, &set), "PetscOptionsGetInt");
@@ -145,6 +144,12 @@ class PetscSolver final : public LinearSolver {
       setup_preconditioner();
       run_ksp();
     }
+    const std::string failed_setup = pc_failure();
+    const bool smoothed_again = reason_ == KSP_DIVERGED_PC_FAILED && switch_smoothers();
+    if (smoothed_again) {
+      setup_preconditioner();
+      run_ksp();
+    }
     const bool switched = reason_ == KSP_DIVERGED_INDEFINITE_PC && switch_to_gmres();
     if (switched) run_ksp();
     last_report_ = "ksp " + ksp_type() + ": " + std::to_string(iterations_) + " iterations (" +
@@ -152,6 +157,9 @@ class PetscSolver final : public LinearSolver {
                    (retried  ? "new preconditioner (the reused one did not converge)"
                     : reused ? "preconditioner reused"
                              : "new preconditioner") +
+                   (smoothed_again ? "; SOR smoothing failed (" + failed_setup.substr(2) +
+                                         "): Chebyshev + Jacobi from here on"
+                                   : "") +
                    (switched ? "; CG met an indefinite preconditioner: GMRES from here on" : "");
     if (reason_ < 0) throw NotConverged(method() + " did not converge: " + last_report_);
     total_iterations_ += iterations_;
@@ -209,6 +217,36 @@ class PetscSolver final : public LinearSolver {
     if (given_.count("-ksp_type") || ksp_type() != KSPCG) return false;
     check(KSPSetType(ksp_, KSPGMRES), "KSPSetType");
     return true;
+  }
+
+  /// The default SOR level smoothers failed the multigrid setup or cycle (they divide by the zero
+  /// diagonals that single-node aggregates can leave in coarse operators: docs/parallel.md): the
+  /// multigrid is rebuilt with fallback_smoothers, for this and every later solve, unless the case chose
+  /// the smoothers. True if switched.
+  bool switch_smoothers() {
+    if (smoothers_switched_ || given_.count("-mg_levels_ksp_type") || given_.count("-mg_levels_pc_type")) return false;
+    PC pc = nullptr;
+    PCType type = nullptr;
+    check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+    check(PCGetType(pc, &type), "PCGetType");
+    if (!type || std::strcmp(type, PCGAMG) != 0) return false;
+    check(PetscOptionsInsertString(options_, fallback_smoothers), "PetscOptionsInsertString");
+    create_ksp(ksp_type() == KSPCG ? KSPCG : KSPGMRES);  // a new multigrid reads the new options
+    check(KSPSetOperators(ksp_, matrix_, matrix_), "KSPSetOperators");
+    smoothers_switched_ = true;
+    return true;
+  }
+
+  /// A new KSP of `type` (the caller's -ksp_type wins) with GAMG, relative tolerance 1e-8, at most 1000
+  /// iterations, then the options; inside an OptionsScope.
+  void create_ksp(const char* type) {
+    check(KSPCreate(comm_, ksp_.out()), "KSPCreate");
+    check(KSPSetType(ksp_, type), "KSPSetType");
+    PC pc = nullptr;
+    check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+    check(PCSetType(pc, PCGAMG), "PCSetType");
+    check(KSPSetTolerances(ksp_, 1e-8, PETSC_DEFAULT, PETSC_DEFAULT, 1000), "KSPSetTolerances");
+    check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
   }
 
   /// ": <why the preconditioner failed>" after a DIVERGED_PC_FAILED, else "".
@@ -346,6 +384,7 @@ class PetscSolver final : public LinearSolver {
   PatternSignature<double> pattern_;
   std::vector<Eigen::Index> picked_;  ///< positions in A's value array of this process's rows
   std::vector<PetscScalar> values_;  ///< COO values, in the order given to MatSetPreallocationCOO
+  bool smoothers_switched_ = false;  ///< switch_smoothers() done
   bool preonly_ = false;             ///< -ksp_type preonly: the preconditioner is the solve (never reused)
   long reuse_limit_ = -1;            ///< -cushion_pc_reuse_max_it, -1: automatic
   bool pc_ready_ = false;            ///< a preconditioner was set up for the current matrix object
