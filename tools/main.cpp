@@ -27,23 +27,27 @@ int main(int argc, char** argv) {
   // Under mpirun -np N every process runs this; one message is enough (errors of a distributed run
   // are met by every process alike, see tools/cmd_run.cpp).
   static std::ostream silent(nullptr);
-  std::ostream& err = cushion::tools::launched_rank() == 0 ? std::cerr : silent;
+  const bool first = cushion::tools::launched_rank() == 0;
+  std::ostream& err = first ? std::cerr : silent;
+  // Only process 0 returns the error's exit code (mpirun's code then): a process leaving with a non-zero code
+  // makes mpirun end the others, which under load ended process 0 before its message was out (seen in ctest).
+  auto failure = [first](int code) { return first ? code : 0; };
   if (cushion::tools::launched_processes() > 1 && !(argc > 1 && std::string(argv[1]) == "run")) {
     err << "cushion: input error: started by mpirun on " << cushion::tools::launched_processes()
         << " processes: only `cushion run` runs distributed (start the other commands without mpirun)\n";
-    return 2;
+    return failure(2);
   }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     // --help and --version exit 0; every argument error exits 2 like any other input error.
-    return app.exit(e) == 0 ? 0 : 2;
+    return app.exit(e, first ? std::cout : silent, err) == 0 ? 0 : failure(2);
   } catch (const cushion::InputError& e) {
     err << "cushion: input error: " << e.what() << "\n";
-    return 2;
+    return failure(2);
   } catch (const std::exception& e) {
     err << "cushion: error: " << e.what() << "\n";
-    return 1;
+    return failure(1);
   }
   return 0;
 }

@@ -4,6 +4,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <set>
 #include <sstream>
@@ -20,12 +21,15 @@ namespace {
 
 /// Defaults under the caller's options: multigrid levels smoothed by symmetric SOR (Richardson). The
 /// PETSc default, Chebyshev with estimated eigenvalues, gave an indefinite preconditioner (CG stopped
-/// with DIVERGED_INDEFINITE_PC) on compressed foam tangents that CHOLMOD factorizes as SPD. Known limit
-/// (docs/parallel.md): SOR fails the first solve of a 30^3 and a 69^3 cube and of the graded 20 x 20 x 8
-/// indentation mesh (DIVERGED_PC_FAILED: SUBPC_ERROR); "-mg_levels_ksp_type chebyshev -mg_levels_pc_type
-/// jacobi -pc_gamg_esteig_ksp_type cg -mg_levels_ksp_chebyshev_esteig 0,0.1,0,1.2 -pc_gamg_threshold 0.01"
-/// solves those but failed a small SIT-BAR case that SOR solves: no default serves all yet.
+/// with DIVERGED_INDEFINITE_PC) on compressed foam tangents that CHOLMOD factorizes as SPD. Plain SOR
+/// fails (DIVERGED_PC_FAILED: SUBPC_ERROR, a zero pivot) where an aggregate of fewer nodes than rigid-body
+/// modes leaves an all-zero row in a coarse operator (30^3 and 69^3 cubes, the graded 20 x 20 x 8
+/// indentation, the 40 x 40 x 16 one on two processes); setup_preconditioner() therefore shifts the
+/// diagonal SOR divides by (sor_shift). A zero row then smooths to zero; other rows change by 1e-12.
 constexpr const char* default_options = "-mg_levels_ksp_type richardson -mg_levels_pc_type sor";
+
+/// SOR's diagonal shift relative to the mean |diagonal| of the fine matrix [-].
+constexpr double sor_shift = 1e-12;
 
 /// What replaces the SOR smoothers after they failed (switch_smoothers).
 constexpr const char* fallback_smoothers =
@@ -326,11 +330,17 @@ class PetscSolver final : public LinearSolver {
       if (layout_.owns(layout_.row[i])) sum_count[0] += std::abs(diagonal(i)), sum_count[1] += 1.0;
     if (distribution_) distribution_->sum(sum_count);
     const double mean = sum_count[1] > 0.0 ? sum_count[0] / sum_count[1] : 0.0;
-    std::fill(values_.begin() + static_cast<std::ptrdiff_t>(picked_.size()), values_.end(), mean > 0.0 ? mean : 1.0);
+    mean_diagonal_ = mean > 0.0 ? mean : 1.0;
+    std::fill(values_.begin() + static_cast<std::ptrdiff_t>(picked_.size()), values_.end(), mean_diagonal_);
     check(MatSetValuesCOO(matrix_, values_.data(), INSERT_VALUES), "MatSetValuesCOO");
   }
 
   void setup_preconditioner() {
+    if (!given_.count("-mg_levels_pc_sor_diagonal_shift")) {
+      char shift[80];
+      std::snprintf(shift, sizeof shift, "-mg_levels_pc_sor_diagonal_shift %.17g", sor_shift * mean_diagonal_);
+      check(PetscOptionsInsertString(options_, shift), "PetscOptionsInsertString");
+    }
     check(KSPSetReusePreconditioner(ksp_, PETSC_FALSE), "KSPSetReusePreconditioner");
     check(KSPSetUp(ksp_), "KSPSetUp");
     ++setups_;
@@ -384,6 +394,7 @@ class PetscSolver final : public LinearSolver {
   PatternSignature<double> pattern_;
   std::vector<Eigen::Index> picked_;  ///< positions in A's value array of this process's rows
   std::vector<PetscScalar> values_;  ///< COO values, in the order given to MatSetPreallocationCOO
+  double mean_diagonal_ = 1.0;       ///< mean |diagonal| of the matrix (units of A)
   bool smoothers_switched_ = false;  ///< switch_smoothers() done
   bool preonly_ = false;             ///< -ksp_type preonly: the preconditioner is the solve (never reused)
   long reuse_limit_ = -1;            ///< -cushion_pc_reuse_max_it, -1: automatic
