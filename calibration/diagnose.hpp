@@ -58,6 +58,11 @@ struct DiagnoseOptions {
   /// test_diagnose_foreign.cpp with the exact base: all 8 right jointly; exponentially preload-dependent Prony
   /// ("recalibrate the base", dBIC 4.134e5 vs the reference's 4.136e5) wrong without.
   bool joint_base = true;
+  /// The base refit (the reference) also frees a log10 factor in [-0.5, 0.5] on each Prony time tau_i: the fit places
+  /// its times one per decade, a foam's spectrum need not sit there, and a misplaced time leaves a misfit of the
+  /// dynamic modulus that an effect would otherwise absorb. Joint candidates start from the reference's fitted base
+  /// and keep its times (5 parameters fewer per candidate; their moduli factors are refitted with the effect).
+  bool base_times = true;
   /// Out-of-sample check of a supported candidate (leave-one-test-out, see HeldOutCheck): on by default.
   bool held_out = true;
   int held_out_iterations = 6;    ///< Ceres iterations per held-out refit (started from the full fit)
