@@ -239,7 +239,7 @@ CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector
   for (const auto& e : start_effects) fit.kinds.push_back(e.kind);
   CandidateModel model(base, start_effects, campaign, noise, options);
   if (refit_base) {
-    model.free_base_moduli(options.base_times && start_effects.empty());  // candidates keep the reference's times
+    model.free_base_moduli(options.base_times);  // a joint candidate has every parameter of the reference
     fit.base_refitted = true;
     if (start_effects.empty())
       fit.kinds.push_back(options.base_times ? "base refit (hyperfoam and Prony moduli, Prony times)"
@@ -247,9 +247,6 @@ CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector
   }
   std::vector<double> u = model.start();
   fit.parameters = static_cast<int>(u.size());
-  // A joint candidate starts from the reference's fitted Prony times and keeps them: they were fitted to these data
-  // too, so they count in its BIC (else it would gain 5 ln N over the reference for parameters it inherited).
-  if (refit_base && options.base_times && !start_effects.empty()) fit.parameters += static_cast<int>(base.prony.size());
   try {
     if (scan) scan_start(model, u);
     if (!std::isfinite(model.chi2_at(u.data())))
@@ -749,7 +746,8 @@ void winner_verdict(const material::MaterialSpec& baseline, const DiagnoseOption
     << " parameters; chi2/N " << fmt(d.baseline_chi2 / d.residuals) << " -> " << fmt(w.chi2 / d.residuals) << "). ";
   if (w.base_refitted)
     o << "Fitted together with the base moduli (joint): use material_extended.json, whose hyperfoam mu_i and Prony "
-         "g_i are refitted too; the fragment alone on the old base is not the fitted model. ";
+         "g_i" << (options.base_times ? " and tau_i" : "") << " are refitted too; the fragment alone on the old base is "
+         "not the fitted model. ";
   if (d.winner_at_noise_level) {
     o << "With it every test falls to the noise level (within " << fmt(options.compare.noise_level_ratio, 2) << "x).";
   } else {
