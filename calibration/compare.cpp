@@ -85,8 +85,8 @@ TestCompare compare_dynamic(const material::Material& model, const Campaign& cam
     c.model.push_back(r.dynamic_modulus_kPa[i] / kPa);
     c.model_phase.push_back(r.phase_deg[i]);
   }
-  c.regions = spectrum_regions(c.measured, c.model, c.measured_phase, c.model_phase,
-                               {noise.modulus, noise.phase, noise.known}, "modulus", "kPa", kPa);
+  c.regions = spectrum_regions(c.measured, c.model, c.measured_phase, c.model_phase, noise.spectrum(), "modulus",
+                               "kPa", kPa);
   return c;
 }
 
@@ -100,14 +100,23 @@ std::vector<TestNoise> estimate_noise(const Campaign& campaign) {
     out.push_back(n);
   }
   for (const auto& t : campaign.dynamic) {
-    const SpectrumNoise s = spectrum_noise(t.moduli.frequency, modulus_amplitude(t.moduli), modulus_phase(t.moduli));
-    TestNoise n;
-    n.modulus = s.amplitude;
-    n.phase = s.phase;
-    n.known = s.known;
-    out.push_back(n);
+    std::vector<double> inverse_excitation;  // 1 / strain amplitude (none without an acceleration amplitude)
+    if (t.acceleration_amplitude > 0.0)
+      for (double e : strain_amplitudes(t, campaign.specimen.thickness)) inverse_excitation.push_back(1.0 / e);
+    out.push_back(TestNoise::of(
+        spectrum_noise(t.moduli.frequency, modulus_amplitude(t.moduli), modulus_phase(t.moduli), inverse_excitation)));
   }
   return out;
+}
+
+TestNoise TestNoise::of(const SpectrumNoise& s) {
+  TestNoise n;
+  n.modulus = s.amplitude;
+  n.phase = s.phase;
+  n.modulus_local = s.amplitude_local;
+  n.phase_local = s.phase_local;
+  n.known = s.known;
+  return n;
 }
 
 double TestCompare::noise_ratio() const {
@@ -216,8 +225,9 @@ std::vector<double> normalised_residuals(const CompareResult& result, int quasi_
           r.push_back(1e3);
           continue;
         }
-        r.push_back((t.model[i] - t.measured[i]) / t.noise.modulus);
-        r.push_back((t.model_phase[i] - t.measured_phase[i]) / t.noise.phase);
+        const bool local = t.noise.modulus_local.size() == t.x.size() && t.noise.phase_local.size() == t.x.size();
+        r.push_back((t.model[i] - t.measured[i]) / (local ? t.noise.modulus_local[i] : t.noise.modulus));
+        r.push_back((t.model_phase[i] - t.measured_phase[i]) / (local ? t.noise.phase_local[i] : t.noise.phase));
       }
     }
   }

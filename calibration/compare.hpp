@@ -22,7 +22,11 @@
 ///     differences on the loading, hold and unloading branches (compare_metrics.hpp reading_noise): the noise
 ///     at each sample, so each region is judged against the noise at its own stress, the hold included;
 ///   dynamic: scatter of |E*| and of the phase about a smooth least-squares polynomial in log f
-///     (cubic from 8 frequencies, quadratic from 5, else none), sigma = sqrt(SSR / (n - p)).
+///     (cubic from 8 frequencies, quadratic from 5, else none), a noise PER FREQUENCY: the force channel's
+///     percent of reading and floor, the floor weighing 1/(strain amplitude) of the test's excitation (constant
+///     acceleration: the displacement falls as 1/f^2, so the floor dominates at high frequency;
+///     compare_metrics.hpp spectrum_noise). A dynamic region's error/noise is the RMS of the error in units of
+///     the noise at each frequency.
 /// NRMSE: quasi-static RMS / peak measured stress; |E*|: RMS / mean measured |E*|; phase: RMS / 90 deg.
 /// Units: internal mm, N, s, MPa; reported stresses/moduli in kPa, phases in degrees, strains nominal
 /// compression positive. The error and noise helpers are shared with the structure level (compare_metrics.hpp).
@@ -49,9 +53,13 @@ struct CompareOptions {
 struct TestNoise {
   double stress = 0.0;   ///< quasi-static: RMS stress noise over the record [MPa]; indentation: force noise [N]
   std::vector<double> stress_local;  ///< quasi-static: local noise per record sample [MPa] (reading_noise)
-  double modulus = 0.0;  ///< dynamic: |E*| noise [MPa]; dynamic_stiffness: |K*| noise [N/mm]
-  double phase = 0.0;    ///< dynamic: phase noise [deg]
+  double modulus = 0.0;  ///< dynamic: |E*| noise [MPa]; dynamic_stiffness: |K*| noise [N/mm] (RMS over the frequencies)
+  double phase = 0.0;    ///< dynamic, dynamic_stiffness: phase noise [deg] (RMS over the frequencies)
+  std::vector<double> modulus_local, phase_local;  ///< dynamic, dynamic_stiffness: noise at each frequency [MPa or N/mm], [deg]
   bool known = false;    ///< estimate available (enough samples)
+  /// The spectrum noise of a dynamic or dynamic_stiffness test (compare_metrics.hpp), and back.
+  SpectrumNoise spectrum() const { return {modulus, phase, modulus_local, phase_local, known}; }
+  static TestNoise of(const SpectrumNoise& s);
 };
 
 struct TestCompare {

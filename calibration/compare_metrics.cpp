@@ -28,19 +28,34 @@ double third_difference_noise(const std::vector<double>& y) {
   return 1.4826 * median_abs(d3) / std::sqrt(20.0);
 }
 
-double polynomial_scatter(const std::vector<double>& x, const std::vector<double>& y, int degree) {
+namespace {
+
+/// Residuals y - p(x) of the least-squares polynomial of `degree` in x weighted by w (x scaled to [-1, 1]).
+std::vector<double> polynomial_residuals(const std::vector<double>& x, const std::vector<double>& y, int degree,
+                                         const std::vector<double>& w) {
   const int n = static_cast<int>(x.size());
-  if (degree < 0 || n <= degree + 1) return 0.0;
   const double x0 = (x.front() + x.back()) / 2.0, h = std::max(1e-12, (x.back() - x.front()) / 2.0);
   Eigen::MatrixXd A(n, degree + 1);
-  Eigen::VectorXd b(n);
+  Eigen::VectorXd b(n), sw(n);
   for (int i = 0; i < n; ++i) {
     const double u = (x[i] - x0) / h;
+    sw(i) = std::sqrt(w[i]);
     for (int k = 0; k <= degree; ++k) A(i, k) = std::pow(u, k);
     b(i) = y[i];
   }
-  const Eigen::VectorXd c = A.colPivHouseholderQr().solve(b);
-  return std::sqrt((A * c - b).squaredNorm() / (n - degree - 1));
+  const Eigen::VectorXd c = (sw.asDiagonal() * A).colPivHouseholderQr().solve(sw.asDiagonal() * b);
+  const Eigen::VectorXd r = b - A * c;
+  return {r.data(), r.data() + n};
+}
+
+}  // namespace
+
+double polynomial_scatter(const std::vector<double>& x, const std::vector<double>& y, int degree) {
+  const int n = static_cast<int>(x.size());
+  if (degree < 0 || n <= degree + 1) return 0.0;
+  double ssr = 0.0;
+  for (double r : polynomial_residuals(x, y, degree, std::vector<double>(x.size(), 1.0))) ssr += r * r;
+  return std::sqrt(ssr / (n - degree - 1));
 }
 
 namespace {
@@ -57,23 +72,32 @@ struct ReadingVariance {
   double at(double x) const { return A * x + kSumSquares * B; }  ///< E[d^2] for x = sum c_j^2 y_j^2
 };
 
-/// Weighted least squares of d2 ~ A x + 20 B with A, B >= 0 over the samples `use` marks, weights w.
+/// Two non-negative variance parts: weighted least squares of r2_k ~ A u_k + B v_k with A, B >= 0 over the
+/// samples `use` marks, weights w (the better one-part fit when the two-part one has a negative part).
+std::pair<double, double> two_part_variance(const std::vector<double>& r2, const std::vector<double>& u,
+                                            const std::vector<double>& v, const std::vector<double>& w,
+                                            const std::vector<char>& use) {
+  double suu = 0.0, svv = 0.0, suv = 0.0, sur = 0.0, svr = 0.0, srr = 0.0;
+  for (std::size_t k = 0; k < r2.size(); ++k) {
+    if (!use[k]) continue;
+    suu += w[k] * u[k] * u[k], svv += w[k] * v[k] * v[k], suv += w[k] * u[k] * v[k];
+    sur += w[k] * u[k] * r2[k], svr += w[k] * v[k] * r2[k], srr += w[k] * r2[k] * r2[k];
+  }
+  const double det = suu * svv - suv * suv;
+  if (det > 1e-12 * suu * svv) {
+    const double A = (svv * sur - suv * svr) / det, B = (suu * svr - suv * sur) / det;
+    if (A >= 0.0 && B >= 0.0) return {A, B};
+  }
+  const double A = suu > 0.0 ? std::max(0.0, sur / suu) : 0.0, B = svv > 0.0 ? std::max(0.0, svr / svv) : 0.0;
+  const double cost_A = srr - A * sur, cost_B = srr - B * svr;  // weighted SSR of each one-part fit
+  return cost_A < cost_B ? std::pair{A, 0.0} : std::pair{0.0, B};
+}
+
+/// Weighted least squares of d2 ~ A x + 252 B with A, B >= 0 over the samples `use` marks, weights w.
 ReadingVariance weighted_variance_fit(const std::vector<double>& d2, const std::vector<double>& x,
                                       const std::vector<double>& w, const std::vector<char>& use) {
-  double sxx = 0.0, sx = 0.0, s1 = 0.0, sxy = 0.0, sy = 0.0;
-  for (std::size_t k = 0; k < d2.size(); ++k) {
-    if (!use[k]) continue;
-    sxx += w[k] * x[k] * x[k], sx += w[k] * x[k], s1 += w[k], sxy += w[k] * x[k] * d2[k], sy += w[k] * d2[k];
-  }
-  ReadingVariance m;
-  const double det = sxx * s1 - sx * sx;
-  if (det > 1e-12 * sxx * s1) {
-    m.A = (s1 * sxy - sx * sy) / det;
-    m.B = (sxx * sy - sx * sxy) / det / kSumSquares;
-  }
-  if (!(det > 1e-12 * sxx * s1) || m.A < 0.0) m = {0.0, sy / s1 / kSumSquares};  // a floor only
-  if (m.B < 0.0) m = {sxy / sxx, 0.0};                                     // relative only
-  return m;
+  const auto [A, B] = two_part_variance(d2, x, std::vector<double>(d2.size(), kSumSquares), w, use);
+  return {A, B};
 }
 
 }  // namespace
@@ -129,7 +153,7 @@ double rms_of(const std::vector<double>& v) {
 
 RegionError region_error(const std::string& name, const std::string& unit, const std::vector<double>& model,
                          const std::vector<double>& measured, const std::vector<std::size_t>& index, double scale,
-                         double noise, double factor, const std::vector<double>* local) {
+                         double noise, double factor, const std::vector<double>* local, bool normalised) {
   RegionError r{name, unit};
   if (local && !local->empty() && !index.empty()) {  // RMS of the local noise over the region
     double n2 = 0.0;
@@ -143,6 +167,11 @@ RegionError region_error(const std::string& name, const std::string& unit, const
     s1 += e;
   }
   r.points = index.size();
+  if (normalised && local && !index.empty()) {
+    double z2 = 0.0;
+    for (std::size_t i : index) z2 += std::pow((model[i] - measured[i]) / std::max((*local)[i], 1e-300), 2);
+    r.normalised_rms = std::sqrt(z2 / index.size());
+  }
   if (!index.empty()) {
     r.rms = std::sqrt(s2 / index.size());
     r.bias = s1 / index.size();
@@ -190,19 +219,76 @@ std::vector<RegionError> curve_regions(const CurveSamples& c, const std::string&
   return out;
 }
 
+namespace {
+
+/// Noise at each frequency of one channel y whose variance is sigma_i^2 = A u_i + B v_i (A, B >= 0): the squared
+/// residuals about the polynomial of `degree` in log f (weighted 1/sigma^2), scaled by n/(n - p) for the fitted
+/// coefficients, fitted by two_part_variance with weights 1/sigma^4 (the variance of a squared residual), iterated.
+std::vector<double> channel_noise(const std::vector<double>& logf, const std::vector<double>& y, int degree,
+                                  const std::vector<double>& u, const std::vector<double>& v) {
+  const std::size_t n = y.size();
+  const double dof = static_cast<double>(n) / static_cast<double>(n - degree - 1);
+  std::vector<double> var(n, 1.0), w(n), r2(n);
+  const std::vector<char> use(n, 1);
+  for (int iteration = 0; iteration < 30; ++iteration) {
+    for (std::size_t i = 0; i < n; ++i) w[i] = 1.0 / var[i];
+    const std::vector<double> r = polynomial_residuals(logf, y, degree, w);
+    for (std::size_t i = 0; i < n; ++i) r2[i] = r[i] * r[i] * dof, w[i] = 1.0 / (var[i] * var[i]);
+    const auto [A, B] = two_part_variance(r2, u, v, w, use);
+    double change = 0.0, largest = 0.0;
+    std::vector<double> next(n);
+    for (std::size_t i = 0; i < n; ++i) next[i] = A * u[i] + B * v[i], largest = std::max(largest, next[i]);
+    if (!(largest > 0.0)) return std::vector<double>(n, 0.0);  // noise-free data: the floors decide
+    for (std::size_t i = 0; i < n; ++i) {
+      next[i] = std::max(next[i], 1e-12 * largest);
+      change = std::max(change, std::abs(next[i] - var[i]) / next[i]);
+    }
+    var = next;
+    if (change < 1e-6) break;
+  }
+  std::vector<double> sigma;
+  for (double x : var) sigma.push_back(std::sqrt(x));
+  return sigma;
+}
+
+/// sigma floored at `least` and at 10 % of its RMS.
+void floor_noise(std::vector<double>& sigma, double least) {
+  const double lowest = std::max(least, 0.1 * rms_of(sigma));
+  for (double& s : sigma) s = std::max(s, lowest);
+}
+
+}  // namespace
+
 SpectrumNoise spectrum_noise(const std::vector<double>& frequency, const std::vector<double>& amplitude,
-                             const std::vector<double>& phase_deg) {
+                             const std::vector<double>& phase_deg, const std::vector<double>& inverse_excitation) {
   SpectrumNoise n;
   const int degree = scatter_degree(frequency.size());
   if (degree < 0) return n;
+  const std::size_t m = frequency.size();
   std::vector<double> x;
   for (double f : frequency) x.push_back(std::log(f));
-  n.amplitude = polynomial_scatter(x, amplitude, degree);
-  n.phase = polynomial_scatter(x, phase_deg, degree);
   double mean = 0.0;
-  for (double a : amplitude) mean += a / amplitude.size();
-  n.amplitude = std::max(n.amplitude, 1e-6 * mean);
-  n.phase = std::max(n.phase, 1e-6);
+  for (double a : amplitude) mean += a / static_cast<double>(m);
+  if (inverse_excitation.size() == m) {  // force channel: a percent of the force and a floor
+    double top = 0.0;
+    for (double e : inverse_excitation) top = std::max(top, std::abs(e));
+    std::vector<double> a2, e2, one(m, 1.0), e2_over_a2;
+    for (std::size_t i = 0; i < m; ++i) {
+      const double e = inverse_excitation[i] / top;
+      a2.push_back(amplitude[i] * amplitude[i]);
+      e2.push_back(e * e);
+      e2_over_a2.push_back(e * e * mean * mean / std::max(a2.back(), 1e-300));
+    }
+    n.amplitude_local = channel_noise(x, amplitude, degree, a2, e2);
+    n.phase_local = channel_noise(x, phase_deg, degree, one, e2_over_a2);
+  } else {
+    n.amplitude_local.assign(m, polynomial_scatter(x, amplitude, degree));
+    n.phase_local.assign(m, polynomial_scatter(x, phase_deg, degree));
+  }
+  floor_noise(n.amplitude_local, 1e-6 * mean);
+  floor_noise(n.phase_local, 1e-6);
+  n.amplitude = rms_of(n.amplitude_local);
+  n.phase = rms_of(n.phase_local);
   n.known = true;
   return n;
 }
@@ -220,14 +306,17 @@ std::vector<RegionError> spectrum_regions(const std::vector<double>& measured, c
     band[std::min<std::size_t>(2, 3 * i / n)].push_back(i);
   }
   const double ea = noise.known ? noise.amplitude : 0.0, ep = noise.known ? noise.phase : 0.0;
+  const bool local = noise.known && noise.amplitude_local.size() == n && noise.phase_local.size() == n;
+  const std::vector<double>* la = local ? &noise.amplitude_local : nullptr;
+  const std::vector<double>* lp = local ? &noise.phase_local : nullptr;
   std::vector<RegionError> out;
-  out.push_back(region_error("all_" + amplitude_name, unit, model, measured, all, mean, ea, factor));
-  out.push_back(region_error("all_phase", "deg", model_phase, measured_phase, all, 90.0, ep, 1.0));
+  auto add = [&](const std::string& name, const std::vector<std::size_t>& index) {
+    out.push_back(region_error(name + "_" + amplitude_name, unit, model, measured, index, mean, ea, factor, la, local));
+    out.push_back(region_error(name + "_phase", "deg", model_phase, measured_phase, index, 90.0, ep, 1.0, lp, local));
+  };
+  add("all", all);
   const char* names[3] = {"band_low", "band_mid", "band_high"};
-  for (int b = 0; b < 3; ++b) {
-    out.push_back(region_error(std::string(names[b]) + "_" + amplitude_name, unit, model, measured, band[b], mean, ea, factor));
-    out.push_back(region_error(std::string(names[b]) + "_phase", "deg", model_phase, measured_phase, band[b], 90.0, ep, 1.0));
-  }
+  for (int b = 0; b < 3; ++b) add(names[b], band[b]);
   return out;
 }
 

@@ -12,7 +12,12 @@
 ///     quartic trend) fitted by a noise that depends on the reading, sigma^2 = A y^2 + B (reading_noise):
 ///     each sample, and so each region, is judged against the noise at its own reading;
 ///   spectra: scatter about a least-squares polynomial in log f (cubic from 8 frequencies, quadratic
-///     from 5, else unknown), sigma = sqrt(SSR / (n - p)).
+///     from 5, else unknown). Without the excitation amplitude, one sigma = sqrt(SSR / (n - p)) for every
+///     frequency. With it (a dynamic test at constant acceleration, whose displacement falls as 1/f^2), a noise
+///     per frequency from the force channel's two parts, a percent of the oscillating force and a floor
+///     (docs/physics.md 9): amplitude sigma_i^2 = A a_i^2 + B x_i^2, phase sigma_i^2 = C + D (x_i/a_i)^2, x_i the
+///     inverse excitation amplitude; A..D >= 0 fitted to the squared residuals about the polynomial, which is
+///     refitted with weights 1/sigma_i^2 (iterated).
 #include <cstddef>
 #include <string>
 #include <utility>
@@ -30,7 +35,11 @@ struct RegionError {
   double nrmse = 0.0;        ///< rms / scale [-] (scale: see the caller's documentation)
   double noise = 0.0;        ///< estimated noise standard deviation [unit] (0: unknown)
   std::size_t points = 0;
-  double ratio() const { return noise > 0.0 ? rms / noise : 0.0; }  ///< error in noise units [-]
+  /// RMS of the error in units of the noise AT EACH POINT [-] (0: not computed; spectra with a per-frequency noise,
+  /// whose noise spans decades over a sweep, so that rms / noise would hide a misfit where the noise is small).
+  double normalised_rms = 0.0;
+  /// Error in noise units [-]: normalised_rms when computed, else rms / noise.
+  double ratio() const { return normalised_rms > 0.0 ? normalised_rms : noise > 0.0 ? rms / noise : 0.0; }
 };
 
 /// Robust third-difference noise of a smooth sampled signal: 1.4826 median|d3| / sqrt(20) (0 for < 8 samples).
@@ -55,10 +64,12 @@ std::vector<double> reading_noise(const std::vector<double>& y,
 double rms_of(const std::vector<double>& v);
 
 /// Figures of region `name` over the samples `index`: rms, bias of (model - measured) x factor, nrmse = rms /
-/// (scale x factor), noise = `noise` x factor, or the RMS of `local` over `index` x factor when `local` is given.
+/// (scale x factor), noise = `noise` x factor, or the RMS of `local` over `index` x factor when `local` is given;
+/// with `local` and `normalised`, also normalised_rms = RMS((model - measured)/local) over `index`.
 RegionError region_error(const std::string& name, const std::string& unit, const std::vector<double>& model,
                          const std::vector<double>& measured, const std::vector<std::size_t>& index, double scale,
-                         double noise, double factor, const std::vector<double>* local = nullptr);
+                         double noise, double factor, const std::vector<double>* local = nullptr,
+                         bool normalised = false);
 
 /// Loop area of a load/unload curve: trapezoid integral of y dx over the samples in order (loading minus
 /// unloading) [unit of y x unit of x].
@@ -86,12 +97,16 @@ std::vector<RegionError> curve_regions(const CurveSamples& c, const std::string&
 /// floors 1e-6 x mean amplitude and 1e-6 deg (floating-point scatter of noise-free data). known = false below 5
 /// frequencies.
 struct SpectrumNoise {
-  double amplitude = 0.0;  ///< [unit of the amplitude]
-  double phase = 0.0;      ///< [deg]
+  double amplitude = 0.0;  ///< RMS over the frequencies of amplitude_local [unit of the amplitude]
+  double phase = 0.0;      ///< RMS over the frequencies of phase_local [deg]
+  std::vector<double> amplitude_local, phase_local;  ///< noise at each frequency (same order; empty when unknown)
   bool known = false;
 };
+/// `inverse_excitation`: a number proportional to 1 / (excitation amplitude) at each frequency (any scale, e.g.
+/// 1 / strain amplitude); empty: the same noise at every frequency. A per-frequency noise is floored at 10 % of the
+/// RMS noise (two variance parts fitted on n - p <= 6 residual degrees of freedom cannot resolve less).
 SpectrumNoise spectrum_noise(const std::vector<double>& frequency, const std::vector<double>& amplitude,
-                             const std::vector<double>& phase_deg);
+                             const std::vector<double>& phase_deg, const std::vector<double>& inverse_excitation = {});
 
 /// Regions of a spectrum: all_<a>, all_phase, then band_low/mid/high_<a> and _phase (thirds of the frequency
 /// list), where <a> = `amplitude_name` (e.g. "modulus", "stiffness"). Amplitude NRMSE: RMS / mean measured

@@ -117,6 +117,8 @@ PlotFiles write_test_plot(const TestCompare& t, const fs::path& dir) {
   } else {
     std::vector<double> rp(n), sn(n, t.noise.modulus * p.scale), sp(n, t.noise.phase);
     for (std::size_t i = 0; i < n; ++i) rp[i] = t.model_phase[i] - t.measured_phase[i];
+    for (std::size_t i = 0; i < n && i < t.noise.modulus_local.size(); ++i) sn[i] = t.noise.modulus_local[i] * p.scale;
+    for (std::size_t i = 0; i < n && i < t.noise.phase_local.size(); ++i) sp[i] = t.noise.phase_local[i];
     write_csv(f.csv, p.columns, {t.x, m, d, r, t.measured_phase, t.model_phase, rp, sn, sp}, {"cushion compare: " + t.name});
   }
   io::write_file_atomically(f.script, two_panel_script(t, f.csv.filename().string(), f.png.filename().string()));

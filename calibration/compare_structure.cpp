@@ -76,12 +76,7 @@ TestNoise indentation_noise(const IndentationCurve& record) {
 }
 
 TestNoise stiffness_noise(const StiffnessSpectrum& record) {
-  const SpectrumNoise s = spectrum_noise(record.frequency, record.amplitude, record.phase);
-  TestNoise n;
-  n.modulus = s.amplitude;
-  n.phase = s.phase;
-  n.known = s.known;
-  return n;
+  return TestNoise::of(spectrum_noise(record.frequency, record.amplitude, record.phase));
 }
 
 TestCompare compare_indentation(const IndentationTest& test, const IndentationCurve& model,
@@ -165,7 +160,7 @@ TestCompare compare_stiffness(const StiffnessTest& test, const StiffnessSpectrum
     warnings.push_back(test.name + ": " + std::to_string(left_out) + " measured frequencies outside the run's sweep (" +
                        range + ") are not compared");
   c.regions = spectrum_regions(c.measured, c.model, c.measured_phase, c.model_phase,
-                               {c.noise.modulus, c.noise.phase, c.noise.known}, "stiffness", "N/mm", 1.0);
+                               c.noise.spectrum(), "stiffness", "N/mm", 1.0);
   return c;
 }
 

@@ -42,7 +42,8 @@ struct FreeParameter {
   std::size_t effect = 0;  ///< index in the candidate's effect list
   std::size_t base_term = npos;  ///< hyperfoam term whose mu this factor scales (base refit), else npos
   std::size_t prony_term = npos; ///< Prony term whose a_i = g_i/(1 - sum g) this factor scales (base refit)
-  bool is_base() const { return base_term != npos || prony_term != npos; }
+  std::size_t prony_time = npos; ///< Prony term whose tau_i this factor scales (base refit with base_times)
+  bool is_base() const { return base_term != npos || prony_term != npos || prony_time != npos; }
   static constexpr std::size_t npos = static_cast<std::size_t>(-1);
   const material::EffectParameterInfo* info = nullptr;
   double lower = 0.0, upper = 0.0;  ///< bounds of u
@@ -61,7 +62,7 @@ class CandidateModel {
       const material::EffectInfo* info = material::find_effect(effects_[e].kind);
       for (const auto& p : info->parameters) {
         if (!p.fit) continue;
-        FreeParameter f{e, FreeParameter::npos, FreeParameter::npos, &p};
+        FreeParameter f{e, FreeParameter::npos, FreeParameter::npos, FreeParameter::npos, &p};
         if (p.log_scale) {
           const double lo = std::max(p.min_exclusive ? p.min * (1 + 1e-12) + 1e-300 : p.min, p.default_value * 1e-4);
           f.lower = std::log10(std::max(lo, 1e-300));
@@ -77,12 +78,18 @@ class CandidateModel {
   }
 
   /// Adds a log10 factor in [-1, 1] on the mu of every hyperfoam term and on the relative modulus
-  /// a_i = g_i/(1 - sum g) of every Prony term of the base (the base-refit reference; no effect).
-  void free_base_moduli() {
+  /// a_i = g_i/(1 - sum g) of every Prony term of the base (the base-refit reference; no effect), and with
+  /// `times` one in [-0.5, 0.5] on every Prony time tau_i.
+  void free_base_moduli(bool times) {
     static const material::EffectParameterInfo factor{"modulus_factor", "factor on a base modulus", 1.0, 0.1, 10.0,
                                                       true, true, true};
-    for (std::size_t t = 0; t < base_.hyperfoam.size(); ++t) free_.push_back({0, t, FreeParameter::npos, &factor, -1.0, 1.0});
-    for (std::size_t t = 0; t < base_.prony.size(); ++t) free_.push_back({0, FreeParameter::npos, t, &factor, -1.0, 1.0});
+    static const material::EffectParameterInfo time{"time_factor", "factor on a base Prony time", 1.0, 0.316, 3.16,
+                                                    true, true, true};
+    constexpr std::size_t none = FreeParameter::npos;
+    for (std::size_t t = 0; t < base_.hyperfoam.size(); ++t) free_.push_back({0, t, none, none, &factor, -1.0, 1.0});
+    for (std::size_t t = 0; t < base_.prony.size(); ++t) free_.push_back({0, none, t, none, &factor, -1.0, 1.0});
+    if (times)
+      for (std::size_t t = 0; t < base_.prony.size(); ++t) free_.push_back({0, none, none, t, &time, -0.5, 0.5});
   }
 
   const std::vector<FreeParameter>& free() const { return free_; }
@@ -113,6 +120,7 @@ class CandidateModel {
     for (std::size_t i = 0; i < free_.size(); ++i) {
       if (free_[i].base_term != FreeParameter::npos) s.hyperfoam[free_[i].base_term].mu *= free_[i].to_x(u[i]);
       if (free_[i].prony_term != FreeParameter::npos) a[free_[i].prony_term] *= free_[i].to_x(u[i]), prony_scaled = true;
+      if (free_[i].prony_time != FreeParameter::npos) s.prony[free_[i].prony_time].tau *= free_[i].to_x(u[i]);
     }
     if (prony_scaled) {
       for (double x : a) a_sum += x;
@@ -231,9 +239,11 @@ CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector
   for (const auto& e : start_effects) fit.kinds.push_back(e.kind);
   CandidateModel model(base, start_effects, campaign, noise, options);
   if (refit_base) {
-    model.free_base_moduli();
+    model.free_base_moduli(options.base_times);  // a joint candidate has every parameter of the reference
     fit.base_refitted = true;
-    if (start_effects.empty()) fit.kinds.push_back("base refit (hyperfoam and Prony moduli)");
+    if (start_effects.empty())
+      fit.kinds.push_back(options.base_times ? "base refit (hyperfoam and Prony moduli, Prony times)"
+                                             : "base refit (hyperfoam and Prony moduli)");
   }
   std::vector<double> u = model.start();
   fit.parameters = static_cast<int>(u.size());
@@ -736,7 +746,8 @@ void winner_verdict(const material::MaterialSpec& baseline, const DiagnoseOption
     << " parameters; chi2/N " << fmt(d.baseline_chi2 / d.residuals) << " -> " << fmt(w.chi2 / d.residuals) << "). ";
   if (w.base_refitted)
     o << "Fitted together with the base moduli (joint): use material_extended.json, whose hyperfoam mu_i and Prony "
-         "g_i are refitted too; the fragment alone on the old base is not the fitted model. ";
+         "g_i" << (options.base_times ? " and tau_i" : "") << " are refitted too; the fragment alone on the old base is "
+         "not the fitted model. ";
   if (d.winner_at_noise_level) {
     o << "With it every test falls to the noise level (within " << fmt(options.compare.noise_level_ratio, 2) << "x).";
   } else {
@@ -766,8 +777,8 @@ void no_winner_verdict(const DiagnoseOptions& options, Diagnosis& d) {
   }
   if (base_gain(d) > options.strong_evidence) {
     const CandidateFit& b = *d.base_refit;
-    o << "No effect can be told from a base calibration that is slightly off: refitting only the base moduli "
-         "(hyperfoam mu_i and Prony g_i, no effect) gives dBIC "
+    o << "No effect can be told from a base calibration that is slightly off: refitting only the base "
+         "(hyperfoam mu_i, Prony g_i" << (options.base_times ? " and tau_i" : "") << ", no effect) gives dBIC "
       << fmt(b.delta_bic, 4) << " (chi2/N " << fmt(d.baseline_chi2 / d.residuals) << " -> " << fmt(b.chi2 / d.residuals)
       << (b.compare.at_noise_level(options.compare.noise_level_ratio) ? ", every test at the noise level" : "")
       << ") and no catalogue effect beats it by dBIC > " << fmt(options.strong_evidence);

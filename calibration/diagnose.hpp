@@ -21,7 +21,8 @@
 ///     number, k the fitted parameters); dBIC = BIC_baseline - BIC_candidate (> 0: better). A candidate
 ///     is SUPPORTED when dBIC > strong_evidence (Kass & Raftery: > 10 is very strong) AND it beats by
 ///     strong_evidence the base-refit reference (the base moduli refitted without effect: one log10
-///     factor in [-1, 1] on each hyperfoam mu_i and on each Prony a_i = g_i/(1 - sum g)): a residual that a slightly different base explains as well is not
+///     factor in [-1, 1] on each hyperfoam mu_i and on each Prony a_i = g_i/(1 - sum g), and under base_times one in
+///     [-0.5, 0.5] on each Prony time): a residual that a slightly different base explains as well is not
 ///     evidence of a missing effect. A pair is preferred to the best single only when its dBIC exceeds the
 ///     single's by strong_evidence too.
 ///  5. Verdict: the best supported candidate, its error per test and region after the refit, whether
@@ -58,6 +59,16 @@ struct DiagnoseOptions {
   /// test_diagnose_foreign.cpp with the exact base: all 8 right jointly; exponentially preload-dependent Prony
   /// ("recalibrate the base", dBIC 4.134e5 vs the reference's 4.136e5) wrong without.
   bool joint_base = true;
+  /// The base refit (the reference) also frees a log10 factor in [-0.5, 0.5] on each Prony time tau_i: the fit places
+  /// its times one per decade, a foam's spectrum need not sit there, and a misplaced time leaves a misfit of the
+  /// dynamic modulus that an effect would otherwise absorb. Joint candidates start from the reference's fitted base
+  /// and refit the same factors (times included) with the effect, so each nests the reference, in the BIC and in the
+  /// held-out refits alike. Measured (2026-11-24) with candidates keeping the reference's times instead: the times it
+  /// fitted with the effect unexplained stayed wrong (cases/hidden_effects Mullins: quasi-static tests at
+  /// 1.57/2.02/2.53x noise; pneumatic: no effect named, held-out chi2 2.5e5 vs the reference's 3.3e4), and a
+  /// candidate's held-out refit kept times fitted on the test left out (the 4-term base-mismatch foreign case:
+  /// friction confirmed, 4569 vs 2.7e4); with the times refitted all three pass (Mullins 1.20/1.09/1.14x).
+  bool base_times = true;
   /// Out-of-sample check of a supported candidate (leave-one-test-out, see HeldOutCheck): on by default.
   bool held_out = true;
   int held_out_iterations = 6;    ///< Ceres iterations per held-out refit (started from the full fit)

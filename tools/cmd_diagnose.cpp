@@ -44,6 +44,7 @@ struct DiagnoseCli {
   std::vector<std::string> candidates;
   bool no_held_out = false;
   bool fixed_base = false;
+  bool fixed_times = false;
   cushion::calibration::DiagnoseOptions options;
 };
 
@@ -65,6 +66,8 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
                 "fit only each effect's parameters on the given base (faster; an effect must then beat a refitted base "
                 "on its own)")
       ->excludes("--joint-base");
+  sub->add_flag("--fixed-prony-times", opt->fixed_times,
+                "the base refit keeps the Prony times tau_i (default: a factor in [0.316, 3.16] on each is fitted too)");
   sub->add_flag("--no-held-out", opt->no_held_out,
                 "name the best-supported effect without the leave-one-test-out check (faster; in-sample evidence only)");
   sub->add_option("--threads", opt->options.threads, "candidates fitted in parallel (default 2)")->check(CLI::Range(1, 2));
@@ -85,6 +88,7 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
       throw cushion::InputError("--fixed-base: needs a material (a base fitted here is fitted jointly with each effect)");
     o.joint_base = !opt->fixed_base;
     o.held_out = !opt->no_held_out;
+    o.base_times = !opt->fixed_times;
     for (const auto& k : o.candidates)
       if (!cushion::material::find_effect(k)) throw cushion::InputError("--candidates: unknown effect kind '" + k + "'");
     const std::string campaign_path = opt->files.back();

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 #include <sstream>
 
 #include "calibration/diagnose.hpp"
@@ -49,6 +50,9 @@ TEST_P(HiddenEffect, RankedFirstAndErrorFallsToNoise) {
       EXPECT_EQ(c.kinds.front(), effect);
       break;
     }
+  std::cout << effect << ": winner " << w.name() << ", dBIC " << w.delta_bic << ", error/noise:";  // for the record
+  for (const auto& t : w.compare.tests) std::cout << " " << t.name << " " << t.noise_ratio();
+  std::cout << " (" << d.seconds << " s)\n";
   for (const auto& t : w.compare.tests) EXPECT_LE(t.noise_ratio(), 1.5) << t.name;
   EXPECT_TRUE(d.winner_at_noise_level);
   EXPECT_TRUE(d.fragment.contains("effects"));

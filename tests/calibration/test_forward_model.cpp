@@ -3,7 +3,9 @@
 //  - on campaigns made by an independent generator (tests/foreign, run as its own program) with the exact
 //    truth material, the dynamic error/noise falls once the model runs the campaign's protocol (20 cycles per
 //    frequency, the last 10 fitted, the 5 s dwell before the sweep) instead of the former cheap schedule
-//    (6 cycles, 3 fitted, 48 steps a cycle, no dwell).
+//    (6 cycles, 3 fitted, 48 steps a cycle, no dwell), and every test is at the noise level (error/noise <= 1.5)
+//    once the dynamic noise is estimated per frequency (a constant-acceleration sweep: the force amplitude falls as
+//    1/f^2, the load cell's floor dominates at 20 Hz and is 10-100 x smaller at 1 Hz).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -98,10 +100,10 @@ TEST(ForwardModel, ExactMaterialOfForeignControlsFollowsTheirProtocol) {
       if (a.kind != "dynamic") continue;
       sum_before += b.noise_ratio(), sum_after += a.noise_ratio();
       EXPECT_LT(a.noise_ratio(), b.noise_ratio()) << name << " " << a.name;
-      // What is left is the measurement noise, larger at high frequency (a tiny force amplitude) than the
-      // single scatter estimate of the spectrum says; the modulus error at low frequency is far below noise.
-      EXPECT_LT(a.region("band_low_modulus")->ratio(), 0.5) << name << " " << a.name;
     }
     EXPECT_LT(sum_after, 0.8 * sum_before) << name;
+    // The exact material leaves the measurement noise only: every test within 1.5 x its noise. (A band of a sweep
+    // holds 3-4 frequencies, and its noise is estimated from one sweep: its ratio scatters more and is not asserted.)
+    EXPECT_TRUE(after.at_noise_level(1.5)) << name;
   }
 }
