@@ -19,7 +19,12 @@ struct CommandRun {
 };
 
 /// The path in double quotes, for the shell.
-inline std::string quoted(const std::filesystem::path& path) { return "\"" + path.string() + "\""; }
+inline std::string quoted(const std::filesystem::path& path) {
+  std::string q(1, '"');  // appended, not "\"" + ...: GCC 12 warns falsely (-Wrestrict) on that form once inlined
+  q += path.string();
+  q += '"';
+  return q;
+}
 
 /// Runs a shell command with stderr merged into stdout.
 inline CommandRun run_command(const std::string& shell_command) {
