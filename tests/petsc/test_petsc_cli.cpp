@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "cli_runner.hpp"
+#include "io/csv.hpp"
 
 namespace {
 
@@ -180,30 +181,6 @@ TEST(PetscRun, SweepPreconditionedByPetscGivesTheCholmodPreconditionedSweep) {
 
 }  // namespace
 
-namespace {
-
-/// Indenter force column sphere.F3_N of contact_sphere.csv by time [s] -> [N].
-std::vector<std::pair<double, double>> sphere_force(const fs::path& csv) {
-  std::ifstream in(csv);
-  std::vector<std::pair<double, double>> rows;
-  int column = -1;
-  for (std::string line; std::getline(in, line);) {
-    if (line.empty() || line[0] == '#') continue;
-    std::vector<std::string> cells;
-    std::stringstream s(line);
-    for (std::string cell; std::getline(s, cell, ',');) cells.push_back(cell);
-    if (column < 0) {
-      column = static_cast<int>(std::find(cells.begin(), cells.end(), "sphere.F3_N") - cells.begin());
-      if (column >= static_cast<int>(cells.size())) return {};
-      continue;
-    }
-    rows.emplace_back(std::stod(cells.at(0)), std::stod(cells.at(column)));
-  }
-  return rows;
-}
-
-}  // namespace
-
 // Requirement: where PETSc's node-block SOR fails the multigrid (all-zero rows in a coarse operator: the graded
 // 20 x 20 x 8 indentation mesh of tools/calculix/make_indentation.py fails its first solve) the solver rebuilds
 // it with SOR on a shifted diagonal, says so in the log, and the indenter force equals CHOLMOD's within 1e-6 of
@@ -233,11 +210,13 @@ TEST(PetscRun, FailedNodeBlockSorIsReplacedByShiftedSor) {
   const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("SOR smoothing failed (SUBPC_ERROR): SOR on a shifted diagonal from here on"), std::string::npos)
       << "the node-block SOR no longer fails here: find another mesh that exercises the fallback";
-  const auto p = sphere_force(out["petsc"] / "contact_sphere.csv"), ch = sphere_force(out["cholmod"] / "contact_sphere.csv");
-  ASSERT_EQ(p.size(), ch.size());
-  ASSERT_GE(ch.size(), 3u);
+  const cushion::CsvTable p = cushion::read_csv(out["petsc"] / "contact_sphere.csv");
+  const cushion::CsvTable ch = cushion::read_csv(out["cholmod"] / "contact_sphere.csv");
+  const std::vector<double>&fp = p.col("sphere.F3_N"), &fc = ch.col("sphere.F3_N"), &t = ch.col("time_s");
+  ASSERT_EQ(fp.size(), fc.size());
+  ASSERT_GE(fc.size(), 3u);
   double scale = 0.0;
-  for (const auto& [t, f] : ch) scale = std::max(scale, std::abs(f));
+  for (double f : fc) scale = std::max(scale, std::abs(f));
   ASSERT_GT(scale, 0.0);
-  for (std::size_t i = 0; i < ch.size(); ++i) EXPECT_LE(std::abs(p[i].second - ch[i].second), 1e-6 * scale) << "t = " << ch[i].first;
+  for (std::size_t i = 0; i < fc.size(); ++i) EXPECT_LE(std::abs(fp[i] - fc[i]), 1e-6 * scale) << "t = " << t[i];
 }
