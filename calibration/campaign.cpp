@@ -99,14 +99,15 @@ DynamicModuli read_dynamic_csv(const std::filesystem::path& file, const Specimen
       Es = t.col("storage_modulus_kPa")[i] * 1e-3;
       El = t.col("loss_modulus_kPa")[i] * 1e-3;
       if (!(Es > 0.0)) throw InputError(at_line(t.source, lines, i, "storage_modulus_kPa") + "must be positive");
-      if (!(El > 0.0)) throw InputError(at_line(t.source, lines, i, "loss_modulus_kPa") + "must be positive");
+      if (!std::isfinite(El)) throw InputError(at_line(t.source, lines, i, "loss_modulus_kPa") + "must be a number");
     } else {
       const std::string mcol = set == 0 ? "dynamic_modulus_kPa" : "dynamic_stiffness_N_per_mm";
       const double m = t.col(mcol)[i];
       const double phase = t.col("phase_deg")[i];
       if (!(m > 0.0)) throw InputError(at_line(t.source, lines, i, mcol) + "must be positive");
-      if (!(phase > 0.0 && phase < 90.0))
-        throw InputError(at_line(t.source, lines, i, "phase_deg") + "phase must be in (0, 90) degrees");
+      // A phase <= 0 is accepted: the noise of a nearly elastic response at a tiny force amplitude can give one.
+      if (!(phase > -90.0 && phase < 90.0))
+        throw InputError(at_line(t.source, lines, i, "phase_deg") + "phase must be in (-90, 90) degrees");
       const double E = set == 0 ? m * 1e-3 : m * specimen.thickness / specimen.area();  // MPa
       const double rad = phase * std::numbers::pi / 180.0;
       Es = E * std::cos(rad);

@@ -214,9 +214,7 @@ std::vector<double> normalised_residuals(const CompareResult& result, int quasi_
           continue;
         }
         const std::size_t i = m > 1 ? j * (n - 1) / (m - 1) : 0;
-        // Weights bounded at 4x the record's mean (noise at least half its RMS): the true noise of the lowest
-        // readings is tiny, and the fit would otherwise be steered by the model-form error there.
-        r.push_back((t.model[i] - t.measured[i]) / std::max(t.noise_local[i], 0.5 * t.noise.stress));
+        r.push_back((t.model[i] - t.measured[i]) / t.noise.stress_weighting(t.noise_local[i]));
       }
     } else {
       for (std::size_t i = 0; i < t.x.size(); ++i) {

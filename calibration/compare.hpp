@@ -32,6 +32,7 @@
 /// compression positive. The error and noise helpers are shared with the structure level (compare_metrics.hpp).
 /// Structure-level tests (kinds "indentation" and "dynamic_stiffness", compare_structure.hpp) are reported
 /// as TestCompare too, in N, mm, N/mm and degrees.
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
@@ -59,6 +60,10 @@ struct TestNoise {
   bool known = false;    ///< estimate available (enough samples)
   /// The spectrum noise of a dynamic or dynamic_stiffness test (compare_metrics.hpp), and back.
   SpectrumNoise spectrum() const { return {modulus, phase, modulus_local, phase_local, known}; }
+  /// The noise a quasi-static residual is divided by: the local noise `local`, but at least half the test's RMS noise
+  /// (weights at most 4x the mean; the true noise of the lowest readings is tiny, and a fit would otherwise be steered
+  /// by the model-form error there) [MPa].
+  double stress_weighting(double local) const { return std::max(local, 0.5 * stress); }
   static TestNoise of(const SpectrumNoise& s);
 };
 

@@ -579,14 +579,18 @@ double base_gain(const Diagnosis& d) {
 }
 
 /// Ranking: a single is supported when it beats the reference by strong_evidence, a pair when it beats the
-/// best single and the reference by strong_evidence; supported first, then by dBIC; warnings for
-/// failed or unconverged candidates.
+/// best single and the reference by strong_evidence, none when the reference alone brings every test to the noise
+/// level; supported first, then by dBIC; warnings for failed or unconverged candidates.
 void rank_candidates(std::vector<CandidateFit> fits, std::vector<CandidateFit> pairs, const std::vector<std::size_t>& top,
                      const DiagnoseOptions& options, Diagnosis& d) {
   const double gain = base_gain(d);
-  for (auto& f : fits) f.supported = f.converged && f.delta_bic > gain + options.strong_evidence;
+  // A base refit that brings every test to the noise level leaves nothing for an effect to explain.
+  const bool base_enough = d.base_refit && d.base_refit->converged &&
+                           d.base_refit->compare.at_noise_level(options.compare.noise_level_ratio);
+  for (auto& f : fits) f.supported = !base_enough && f.converged && f.delta_bic > gain + options.strong_evidence;
   const double best_single = top.empty() ? 0.0 : fits[top.front()].delta_bic;
-  for (auto& f : pairs) f.supported = f.converged && f.delta_bic > std::max(best_single, gain) + options.strong_evidence;
+  for (auto& f : pairs)
+    f.supported = !base_enough && f.converged && f.delta_bic > std::max(best_single, gain) + options.strong_evidence;
   for (auto& f : fits) d.candidates.push_back(std::move(f));
   for (auto& f : pairs) d.candidates.push_back(std::move(f));
   for (const auto& f : d.candidates)
@@ -775,7 +779,19 @@ void no_winner_verdict(const DiagnoseOptions& options, Diagnosis& d) {
          "(`cushion fit`, e.g. --refit-on all), check the campaign's protocol keys, or add a test that separates "
          "the candidates (another rate or preload). ";
   }
-  if (base_gain(d) > options.strong_evidence) {
+  const bool base_enough = d.base_refit && d.base_refit->converged &&
+                           d.base_refit->compare.at_noise_level(options.compare.noise_level_ratio);
+  if (base_enough) {
+    const CandidateFit& b = *d.base_refit;
+    o << "No effect is missing: refitting only the base (hyperfoam mu_i, Prony g_i" << (options.base_times ? " and tau_i" : "")
+      << ", no effect) brings every test within " << fmt(options.compare.noise_level_ratio, 2) << "x its noise (chi2/N "
+      << fmt(d.baseline_chi2 / d.residuals) << " -> " << fmt(b.chi2 / d.residuals) << "): the misfit is a base calibration "
+      << "that is slightly off, which an effect must not be named for";
+    if (!d.candidates.empty() && std::isfinite(d.candidates.front().delta_bic))
+      o << " (best effect: " << d.candidates.front().name() << ", dBIC " << fmt(d.candidates.front().delta_bic, 4)
+        << " against the base refit's " << fmt(b.delta_bic, 4) << ")";
+    o << ". Recalibrate the base (rerun `cushion fit`, e.g. with --refit-on all --refit-weights noise).";
+  } else if (base_gain(d) > options.strong_evidence) {
     const CandidateFit& b = *d.base_refit;
     o << "No effect can be told from a base calibration that is slightly off: refitting only the base "
          "(hyperfoam mu_i, Prony g_i" << (options.base_times ? " and tau_i" : "") << ", no effect) gives dBIC "

@@ -184,7 +184,7 @@ DynamicPath dynamic_path(double preload, const std::vector<double>& frequency, c
       time.push_back(ramp_s * k / ramp_steps);
       strain.push_back(preload * k / ramp_steps);
     }
-    double t = ramp_s;
+    double t = ramp_s + schedule->dwell_s;
     for (double f : frequency) {  // hold at the preload to each window centre (the sines are small)
       d.window.push_back(time.size());
       time.push_back(t + (schedule->cycles - 0.5 * schedule->fit_cycles) / f);

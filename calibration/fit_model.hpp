@@ -63,6 +63,7 @@ struct DynamicSchedule {
   double thickness = 80.0;            ///< specimen [mm]
   int cycles = 20;                    ///< cycles per frequency
   int fit_cycles = 10;                ///< last cycles measured (window centre = end - fit_cycles/(2 f))
+  double dwell_s = 0.0;               ///< hold at the preload before the sweep [s]
 };
 
 /// The base path of the dynamic test along `schedule` (the sampling model_dynamic_moduli runs): the preload

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iomanip>
 
+#include "calibration/compare.hpp"
 #include "calibration/hyperfoam_fit.hpp"
 #include "calibration/prony_fit.hpp"
 #include "material/hyperfoam.hpp"
@@ -130,16 +131,27 @@ void hyperfoam_step(const CalibrationTests& c, FitResult& R, std::ostream& log) 
 /// paper (always reported), and by default E_inf = the hyperfoam's long-term tangent at the preload (1-20 Hz
 /// data cannot separate E_inf from the 100 s term; the free fit may return E_inf = 0).
 void prony_step(const CalibrationTests& c, FitResult& R, std::ostream& log) {
+  DynamicModuli moduli;  // the frequencies with a positive loss modulus (noise can make a nearly elastic one <= 0)
+  const DynamicModuli& all = c.dyn.moduli;
+  for (std::size_t i = 0; i < all.frequency.size(); ++i)
+    if (all.loss[i] > 0.0) {
+      moduli.frequency.push_back(all.frequency[i]);
+      moduli.storage.push_back(all.storage[i]);
+      moduli.loss.push_back(all.loss[i]);
+    }
+  if (moduli.frequency.size() < all.frequency.size())
+    warn(R, c.dyn.name + ": " + std::to_string(all.frequency.size() - moduli.frequency.size()) +
+                " frequency(ies) with a phase <= 0 (noise) left out of the paper's Prony fit (step 6)", log);
   try {
-    R.prony_free = fit_prony(c.dyn.moduli, c.options.tau);
+    R.prony_free = fit_prony(moduli, c.options.tau);
     R.prony = R.prony_free;
     if (c.options.prony_long_term_from_hyperfoam)
-      R.prony = fit_prony(c.dyn.moduli, c.options.tau,
+      R.prony = fit_prony(moduli, c.options.tau,
                           preload_tangent(material::Hyperfoam(R.hyperfoam.terms), c.dyn.preload_strain).K_hf);
   } catch (const std::invalid_argument& e) {
     throw InputError(c.dyn.file.string() + ": " + e.what());
   }
-  log << "fit: [6] Prony fit at " << c.dyn.moduli.frequency.size() << " frequencies: chi2 " << R.prony.chi2
+  log << "fit: [6] Prony fit at " << moduli.frequency.size() << " frequencies: chi2 " << R.prony.chi2
       << ", E_inf " << R.prony.E_inf * 1e3 << " kPa"
       << (R.prony.E_inf_fixed ? " (the hyperfoam's long-term tangent at the preload; E_inf fitted freely as in the "
                                 "paper: " + std::to_string(R.prony_free.E_inf * 1e3) + " kPa, chi2 " +
@@ -191,15 +203,38 @@ void prony_conversion_step(const CalibrationTests& c, FitResult& R, std::ostream
 /// Step 8: consistency refit of the paper's material with the solver's model on the quasi-static
 /// calibration test (and the other quasi-static targets) and the dynamic calibration test.
 void refit_step(const CalibrationTests& c, FitResult& R, std::ostream& log) {
-  std::vector<QuasiStaticTarget> targets{{&c.qs, R.segments}};
-  for (const auto& t : c.campaign.quasi_static)
-    if (&t != &c.qs && (c.options.refit_all_quasi_static || t.use == TestUse::calibration))
-      targets.push_back({&t, detect_segments(t.record)});
+  const Campaign& campaign = c.campaign;
+  auto target = [&](const auto& t) { return c.options.refit_on_all_tests || t.use == TestUse::calibration; };
+  std::vector<QuasiStaticTarget> targets{{&c.qs, R.segments, {}}};
+  std::vector<DynamicTarget> dynamic{{&c.dyn, {}, {}}};
+  std::string dynamic_names = c.dyn.name;
+  for (const auto& t : campaign.quasi_static)
+    if (&t != &c.qs && target(t)) targets.push_back({&t, detect_segments(t.record), {}});
+  for (const auto& t : campaign.dynamic)
+    if (&t != &c.dyn && target(t)) dynamic.push_back({&t, {}, {}}), dynamic_names += ", " + t.name;
   RefitOptions refit_options = c.options.refit_options;
   refit_options.schedule = c.schedule;
-  R.refit = refit(R.paper_material, c.campaign.specimen, targets, c.dyn, refit_options);
+  if (c.options.noise_weighted_refit) {  // each residual over its noise estimate (compare.hpp), as diagnose weighs it
+    const std::vector<TestNoise> noise = estimate_noise(campaign);
+    const std::size_t nq = campaign.quasi_static.size();
+    bool known = true;
+    for (auto& t : targets) {
+      const TestNoise& n = noise[std::size_t(t.test - campaign.quasi_static.data())];
+      known = known && n.known;
+      for (double local : n.stress_local) t.stress_sigma.push_back(n.stress_weighting(local));
+    }
+    for (auto& t : dynamic) {
+      const TestNoise& n = noise[nq + std::size_t(t.test - campaign.dynamic.data())];
+      known = known && n.known;
+      t.modulus_sigma = n.modulus_local;
+      t.phase_sigma = n.phase_local;
+    }
+    refit_options.noise_weighted = known;
+    if (!known) warn(R, "refit: a target test has no noise estimate: residuals relative to the peak, not to the noise", log);
+  }
+  R.refit = refit(R.paper_material, c.campaign.specimen, targets, dynamic, refit_options);
   const RefitResult& f = *R.refit;
-  log << "fit: [8] refit on " << targets.size() << " quasi-static test(s) and " << c.dyn.name << " (" << f.iterations << " iterations, " << f.evaluations << " model runs, "
+  log << "fit: [8] refit on " << targets.size() << " quasi-static test(s) and " << dynamic_names << " (" << f.iterations << " iterations, " << f.evaluations << " model runs, "
       << std::setprecision(3) << f.seconds << " s): quasi-static " << percent(f.quasi_static_rms_start) << " -> "
       << percent(f.quasi_static_rms) << ", dynamic " << percent(f.dynamic_rms_start) << " -> " << percent(f.dynamic_rms)
       << (f.accepted() ? "" : "  (NOT accepted: " + f.rejection + ")") << "\n";
@@ -300,7 +335,7 @@ TestComparison compare_quasi_static(const CalibrationTests& c, const QuasiStatic
   cmp.kind = "quasi_static";
   cmp.use = t.use == TestUse::calibration
                 ? "calibration"
-                : (c.options.refit && c.options.refit_all_quasi_static ? "refit target" : "validation");
+                : (c.options.refit && c.options.refit_on_all_tests ? "refit target" : "validation");
   const Segments s = &t == &c.qs ? R.segments : detect_segments(t.record);
   const double hz = std::min(10.0, sampling_rate(t.record));
   attempt(m.paper, cmp.failure_paper, cmp.error_paper, [&] {
@@ -321,7 +356,9 @@ TestComparison compare_dynamic(const CalibrationTests& c, const DynamicTest& t, 
   TestComparison cmp;
   cmp.name = t.name;
   cmp.kind = "dynamic";
-  cmp.use = t.use == TestUse::calibration ? "calibration" : "validation";
+  cmp.use = t.use == TestUse::calibration
+                ? "calibration"
+                : (c.options.refit && c.options.refit_on_all_tests ? "refit target" : "validation");
   attempt(m.paper, cmp.failure_paper, cmp.error_paper, [&] {
     cmp.dynamic_paper = predict_dynamic(*m.paper.model, m.paper.base, t, c.sched());
     return cmp.dynamic_paper->magnitude_rms;
@@ -407,6 +444,14 @@ FitResult fit_pipeline(const Campaign& campaign, const FitOptions& options, std:
   compare_every_test(c, R, log);
   clock.lap("comparison on every test");
   return R;
+}
+
+FitOptions diagnose_base_fit_options() {
+  FitOptions o;
+  o.refit_on_all_tests = true;
+  o.noise_weighted_refit = true;
+  o.refit_options.times_range = 0.5;
+  return o;
 }
 
 }  // namespace cushion::calibration

@@ -23,7 +23,10 @@ struct FitOptions {
   std::optional<double> nu = 0.0;      ///< fixed Poisson ratio; empty: fitted
   std::vector<double> tau = {0.01, 0.1, 1.0, 10.0, 100.0};  ///< Prony times [s]
   bool refit = true;                   ///< run step 8
-  bool refit_all_quasi_static = false; ///< step 8 on every quasi-static test (several rates), not only the calibration ones
+  bool refit_on_all_tests = false;     ///< step 8 on every test (all rates and preloads), not only the calibration ones
+  /// Step 8 weighs each residual by the test's own noise estimate (chi2, as compare and diagnose do) instead of relative
+  /// to the peak stress and moduli: the base `diagnose` fits from raw data.
+  bool noise_weighted_refit = false;
   DefaultMaterial default_material = DefaultMaterial::refit;  ///< the refit if accepted, else the paper's
   PronyNormalisation normalisation = PronyNormalisation::tangent;  ///< step 7 choice for the paper's material
   /// Step 6: E_inf = the hyperfoam's long-term tangent K_hf at the preload, only E_i fitted (1-20 Hz data cannot
@@ -86,5 +89,10 @@ struct FitResult {
 /// InputError (naming the file) when the campaign lacks a calibration test of either kind or a
 /// record does not look like a load/unload test.
 FitResult fit_pipeline(const Campaign& campaign, const FitOptions& options, std::ostream& log);
+
+/// The options of the base `cushion diagnose` fits from raw data: the defaults with the refit on every test
+/// (all rates and preloads), each residual weighed by its noise, as diagnose weighs them, and the Prony times free
+/// within half a decade (`cushion fit --refit-on all --refit-weights noise --free-tau`).
+FitOptions diagnose_base_fit_options();
 
 }  // namespace cushion::calibration

@@ -10,6 +10,8 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 
@@ -28,24 +30,36 @@ struct QuasiStaticResiduals {
   double c = 0.0;                     ///< lateral exponent of the test
   std::vector<std::size_t> samples;   ///< path samples with a measurement
   std::vector<double> stress;         ///< measured [MPa] at those samples
-  double weight = 0.0;                ///< 1 / (peak sqrt(K T))
+  std::vector<double> strain;         ///< nominal compression [-] at every path sample (to rebuild the path)
+  std::vector<double> weight;         ///< per sample: 1 / (peak sqrt(K T)), or noise-weighted sqrt(P/K) / sigma_k
 };
 
-/// Everything the residuals compare against, prepared once. Residual order: quasi-static tests, then
-/// (storage, loss) per frequency.
+/// One dynamic test as residuals: its schedule and the measured moduli.
+struct DynamicResiduals {
+  DynamicPath path;
+  std::optional<DynamicSchedule> schedule;  ///< the test's timing (empty: about a relaxed preload)
+  DynamicModuli moduli;
+  std::vector<double> weight;  ///< per row (storage, loss per frequency) [1/MPa]: residual = (model - measured) x weight
+};
+
+/// Everything the residuals compare against, prepared once for the Prony times `tau`. Residual order:
+/// quasi-static tests, then (storage, loss) per frequency of each dynamic test.
 struct Targets {
   std::vector<QuasiStaticResiduals> quasi_static;
   std::size_t quasi_static_residuals = 0;
-  DynamicPath dynamic;
-  double c_dynamic = 0.0;             ///< the dynamic test is laterally free
-  DynamicModuli moduli;
-  double dynamic_weight = 0.0;        ///< 1 / sqrt(2 F)
+  std::vector<DynamicResiduals> dynamic;
+  double c_dynamic = 0.0;             ///< the dynamic tests are laterally free
   std::size_t N = 0, M = 0;
   double nu = 0.0;
   double mu_scale = 1.0;              ///< [MPa] the parameters hold mu / mu_scale (O(1) for the solver)
   std::vector<double> tau;
-  std::size_t residuals() const { return quasi_static_residuals + 2 * moduli.frequency.size(); }
+  std::size_t residuals() const {
+    std::size_t n = quasi_static_residuals;
+    for (const auto& d : dynamic) n += 2 * d.moduli.frequency.size();
+    return n;
+  }
   std::size_t parameters() const { return 2 * N + M; }
+  double penalty_weight = 10.0;       ///< of the bound sum a_i <= a_sum_max (scaled with the residuals' size)
 };
 
 /// Residuals at x = [mu_1..N, alpha_1..N, a_1..M] (any scalar type: double or ceres::Jet).
@@ -59,14 +73,16 @@ bool residuals(const Targets& g, const T* x, T* r) {
   std::size_t o = 0;
   for (const QuasiStaticResiduals& q : g.quasi_static) {
     const std::vector<T> s = uniaxial_nominal_stress(q.path, mu, alpha, g.N, T(q.c), a);
-    for (std::size_t k = 0; k < q.samples.size(); ++k) r[o++] = (s[q.samples[k]] - q.stress[k]) * q.weight;
+    for (std::size_t k = 0; k < q.samples.size(); ++k) r[o++] = (s[q.samples[k]] - q.stress[k]) * q.weight[k];
   }
-  const std::size_t F = g.moduli.frequency.size();
-  std::vector<T> storage(F), loss(F);
-  uniaxial_dynamic_moduli(g.dynamic, mu, alpha, g.N, T(g.c_dynamic), a, storage.data(), loss.data());
-  for (std::size_t f = 0; f < F; ++f) {
-    r[o++] = (storage[f] / g.moduli.storage[f] - 1.0) * g.dynamic_weight;
-    r[o++] = (loss[f] / g.moduli.loss[f] - 1.0) * g.dynamic_weight;
+  for (const DynamicResiduals& d : g.dynamic) {
+    const std::size_t F = d.moduli.frequency.size();
+    std::vector<T> storage(F), loss(F);
+    uniaxial_dynamic_moduli(d.path, mu, alpha, g.N, T(g.c_dynamic), a, storage.data(), loss.data());
+    for (std::size_t f = 0; f < F; ++f) {
+      r[o++] = (storage[f] - d.moduli.storage[f]) * d.weight[2 * f];
+      r[o++] = (loss[f] - d.moduli.loss[f]) * d.weight[2 * f + 1];
+    }
   }
   return true;
 }
@@ -113,27 +129,30 @@ TermBasis term_basis(const Targets& g, double alpha, const std::vector<std::size
     viscous_states(q.path, S.data(), H.data());
     for (std::size_t k = 0; k < q.samples.size(); ++k, ++o) {
       const std::size_t n = q.samples[k];
-      const double f = -q.path.stretch[n] * q.weight;
+      const double f = -q.path.stretch[n] * q.weight[k];
       B(o) = f * S[n];
       for (std::size_t i = 0; i < M; ++i) Hm(o, i) = f * H[n * M + i];
     }
   }
   // Dynamic rows: the model is affine in a for fixed mu, so B and the columns of Hm follow from M + 1 evaluations.
-  const std::size_t F = g.moduli.frequency.size();
-  std::vector<double> a(M, 0.0), storage0(F), loss0(F), storage(F), loss(F);
-  uniaxial_dynamic_moduli(g.dynamic, &one, &alpha, 1, g.c_dynamic, a.data(), storage0.data(), loss0.data());
-  for (std::size_t f = 0; f < F; ++f) {
-    B(o + 2 * f) = storage0[f] * g.dynamic_weight / g.moduli.storage[f];
-    B(o + 2 * f + 1) = loss0[f] * g.dynamic_weight / g.moduli.loss[f];
-  }
-  for (std::size_t i = 0; i < M; ++i) {
-    a.assign(M, 0.0);
-    a[i] = 1.0;
-    uniaxial_dynamic_moduli(g.dynamic, &one, &alpha, 1, g.c_dynamic, a.data(), storage.data(), loss.data());
+  for (const DynamicResiduals& d : g.dynamic) {
+    const std::size_t F = d.moduli.frequency.size();
+    std::vector<double> a(M, 0.0), storage0(F), loss0(F), storage(F), loss(F);
+    uniaxial_dynamic_moduli(d.path, &one, &alpha, 1, g.c_dynamic, a.data(), storage0.data(), loss0.data());
     for (std::size_t f = 0; f < F; ++f) {
-      Hm(o + 2 * f, i) = (storage[f] - storage0[f]) * g.dynamic_weight / g.moduli.storage[f];
-      Hm(o + 2 * f + 1, i) = (loss[f] - loss0[f]) * g.dynamic_weight / g.moduli.loss[f];
+      B(o + 2 * f) = storage0[f] * d.weight[2 * f];
+      B(o + 2 * f + 1) = loss0[f] * d.weight[2 * f + 1];
     }
+    for (std::size_t i = 0; i < M; ++i) {
+      a.assign(M, 0.0);
+      a[i] = 1.0;
+      uniaxial_dynamic_moduli(d.path, &one, &alpha, 1, g.c_dynamic, a.data(), storage.data(), loss.data());
+      for (std::size_t f = 0; f < F; ++f) {
+        Hm(o + 2 * f, i) = (storage[f] - storage0[f]) * d.weight[2 * f];
+        Hm(o + 2 * f + 1, i) = (loss[f] - loss0[f]) * d.weight[2 * f + 1];
+      }
+    }
+    o += 2 * F;
   }
   TermBasis t{Eigen::VectorXd(rows.size()), Eigen::MatrixXd(rows.size(), M)};
   for (std::size_t k = 0; k < rows.size(); ++k) {
@@ -148,11 +167,12 @@ Eigen::VectorXd target_vector(const Targets& g, const std::vector<std::size_t>& 
   Eigen::VectorXd y(g.residuals());
   std::size_t o = 0;
   for (const QuasiStaticResiduals& q : g.quasi_static)
-    for (double s : q.stress) y(o++) = s * q.weight;
-  for (std::size_t f = 0; f < g.moduli.frequency.size(); ++f) {
-    y(o++) = g.dynamic_weight;
-    y(o++) = g.dynamic_weight;
-  }
+    for (std::size_t k = 0; k < q.stress.size(); ++k) y(o++) = q.stress[k] * q.weight[k];
+  for (const DynamicResiduals& d : g.dynamic)
+    for (std::size_t f = 0; f < d.moduli.frequency.size(); ++f) {
+      y(o++) = d.moduli.storage[f] * d.weight[2 * f];
+      y(o++) = d.moduli.loss[f] * d.weight[2 * f + 1];
+    }
   Eigen::VectorXd out(rows.size());
   for (std::size_t k = 0; k < rows.size(); ++k) out(k) = y(rows[k]);
   return out;
@@ -359,6 +379,43 @@ std::vector<Candidate> diverse_starts(const std::vector<Candidate>& free_candida
   return out;
 }
 
+/// Box bounds of the polishes over x = [mu_j / mu_scale, alpha_j, a_i] and `extra` more parameters: alpha_j keeps
+/// the sign of x0's with 0.2 <= |alpha_j| <= 50, |mu_j| <= mu_bound (mu_j >= 0 when non_negative), 0 <= a_i <= 1e3,
+/// the extra ones within +-extra_range.
+struct Bounds {
+  std::vector<double> lower, upper;
+};
+Bounds polish_bounds(const Targets& g, const std::vector<double>& x0, bool non_negative, const RefitOptions& options,
+                     std::size_t extra = 0, double extra_range = 0.0) {
+  const std::size_t N = g.N, n = g.parameters();
+  Bounds b{std::vector<double>(n + extra), std::vector<double>(n + extra)};
+  for (std::size_t j = 0; j < N; ++j) {
+    const bool negative = x0[N + j] < 0.0;
+    b.lower[N + j] = negative ? -50.0 : 0.2;
+    b.upper[N + j] = negative ? -0.2 : 50.0;
+    b.lower[j] = non_negative ? 0.0 : -options.mu_bound;
+    b.upper[j] = options.mu_bound;
+  }
+  for (std::size_t i = 2 * N; i < n; ++i) b.lower[i] = 0.0, b.upper[i] = 1e3;
+  for (std::size_t i = n; i < n + extra; ++i) b.lower[i] = -extra_range, b.upper[i] = extra_range;
+  return b;
+}
+
+/// Adds the penalty of the bound sum a_i <= a_sum_max on the parameter block x and its box bounds to `problem`.
+void add_ratio_bound_and_box(ceres::Problem& problem, double* x, const Targets& g, const Bounds& b,
+                             const RefitOptions& options) {
+  const int size = static_cast<int>(b.lower.size());
+  auto* bound = new ceres::DynamicAutoDiffCostFunction<RatioSumBound, 12>(
+      new RatioSumBound{2 * g.N, g.M, options.a_sum_max, g.penalty_weight});
+  bound->AddParameterBlock(size);
+  bound->SetNumResiduals(1);
+  problem.AddResidualBlock(bound, nullptr, x);
+  for (int i = 0; i < size; ++i) {
+    problem.SetParameterLowerBound(x, i, b.lower[std::size_t(i)]);
+    problem.SetParameterUpperBound(x, i, b.upper[std::size_t(i)]);
+  }
+}
+
 /// One joint polish of a start (automatic derivatives, Ceres bounded trust region).
 struct PolishOutcome {
   std::vector<double> x;
@@ -374,34 +431,18 @@ struct PolishOutcome {
 /// a second solve then holds the parameters at a bound constant and polishes the rest; it is kept if lower.
 PolishOutcome polish_start(const Targets& g, const Candidate& start, const RefitOptions& options,
                            const ceres::Solver::Options& so) {
-  const std::size_t N = g.N, n = g.parameters();
-  std::vector<double> lower(n), upper(n);
-  for (std::size_t j = 0; j < N; ++j) {
-    const bool negative = start.x[N + j] < 0.0;
-    lower[N + j] = negative ? -50.0 : 0.2;
-    upper[N + j] = negative ? -0.2 : 50.0;
-    lower[j] = start.non_negative ? 0.0 : -options.mu_bound;
-    upper[j] = options.mu_bound;
-  }
-  for (std::size_t i = 2 * N; i < n; ++i) lower[i] = 0.0, upper[i] = 1e3;
+  const std::size_t n = g.parameters();
+  const Bounds b = polish_bounds(g, start.x, start.non_negative, options);
   PolishOutcome out;
   out.x = start.x;
-  for (std::size_t i = 0; i < n; ++i) out.x[i] = std::clamp(out.x[i], lower[i], upper[i]);
+  for (std::size_t i = 0; i < n; ++i) out.x[i] = std::clamp(out.x[i], b.lower[i], b.upper[i]);
   auto solve = [&](std::vector<double>& x, const std::vector<int>& held) {
     auto* cost = new ceres::DynamicAutoDiffCostFunction<JointResidual, 12>(new JointResidual{&g});
     cost->AddParameterBlock(static_cast<int>(n));
     cost->SetNumResiduals(static_cast<int>(g.residuals()));
     ceres::Problem problem;
     problem.AddResidualBlock(cost, nullptr, x.data());
-    auto* bound =
-        new ceres::DynamicAutoDiffCostFunction<RatioSumBound, 12>(new RatioSumBound{2 * N, g.M, options.a_sum_max, 10.0});
-    bound->AddParameterBlock(static_cast<int>(n));
-    bound->SetNumResiduals(1);
-    problem.AddResidualBlock(bound, nullptr, x.data());
-    for (std::size_t i = 0; i < n; ++i) {
-      problem.SetParameterLowerBound(x.data(), int(i), lower[i]);
-      problem.SetParameterUpperBound(x.data(), int(i), upper[i]);
-    }
+    add_ratio_bound_and_box(problem, x.data(), g, b, options);
     if (!held.empty()) problem.SetManifold(x.data(), new ceres::SubsetManifold(int(n), held));
     ceres::Solver::Summary summary;
     ceres::Solve(so, &problem, &summary);
@@ -415,7 +456,7 @@ PolishOutcome polish_start(const Targets& g, const Candidate& start, const Refit
   out.report = first.BriefReport();
   std::vector<int> held;
   for (std::size_t i = 0; i < n; ++i)
-    if (lower[i] == 0.0 && out.x[i] <= 0.0) held.push_back(int(i));
+    if (b.lower[i] == 0.0 && out.x[i] <= 0.0) held.push_back(int(i));
   if (!out.usable || held.empty() || held.size() == n) return out;
   std::vector<double> x = out.x;
   const ceres::Solver::Summary second = solve(x, held);
@@ -449,8 +490,64 @@ double norm_of(const std::vector<double>& r, std::size_t begin, std::size_t end)
   return std::sqrt(s);  // residuals already carry 1/sqrt(count)
 }
 
+/// The paths of `g` rebuilt for Prony times `tau` [s] (the measured samples and weights kept).
+Targets retimed(const Targets& g, const std::vector<double>& tau) {
+  Targets t = g;
+  t.tau = tau;
+  for (QuasiStaticResiduals& q : t.quasi_static) q.path = make_uniaxial_path(q.path.time, q.strain, tau);
+  for (DynamicResiduals& d : t.dynamic)
+    d.path = dynamic_path(1.0 - d.path.preload_stretch, d.path.frequency, d.schedule ? &*d.schedule : nullptr, tau,
+                          d.path.amplitude);
+  return t;
+}
+
+/// sigma with every non-positive or non-finite entry replaced by the median of the positive ones; throws
+/// std::invalid_argument naming `what` when none is positive.
+std::vector<double> usable_sigma(std::vector<double> sigma, const std::string& what) {
+  std::vector<double> positive;
+  for (double x : sigma)
+    if (std::isfinite(x) && x > 0.0) positive.push_back(x);
+  if (positive.empty()) throw std::invalid_argument("refit: noise-weighted, but " + what + " has no noise estimate");
+  std::nth_element(positive.begin(), positive.begin() + std::ptrdiff_t(positive.size() / 2), positive.end());
+  const double median = positive[positive.size() / 2];
+  for (double& x : sigma)
+    if (!(std::isfinite(x) && x > 0.0)) x = median;
+  return sigma;
+}
+
+/// Row weights [1/MPa] of one dynamic test; a row's residual is (model - measured) x weight. Unweighted: the relative
+/// error over sqrt(2 F D) (F frequencies, D dynamic tests), weight 1 / (measured sqrt(2 F D)), and 0 on a loss row
+/// whose measured E'' <= 0 (noise; no relative error). Noise-weighted: 1 / sigma with the absolute noise of
+/// E' = A cos p and E'' = A sin p from the |E*| noise s_A and the phase noise s_p [rad] (first order, independent
+/// errors): hypot(s_A cos p, A sin p s_p) and hypot(s_A sin p, A cos p s_p), whatever the sign of the measurement.
+std::vector<double> dynamic_weights(const DynamicTarget& t, std::size_t tests, bool noise_weighted) {
+  const DynamicModuli& m = t.test->moduli;
+  const std::size_t F = m.frequency.size();
+  std::vector<double> w;
+  if (!noise_weighted) {
+    const double share = 1.0 / std::sqrt(2.0 * double(F * tests));
+    for (std::size_t f = 0; f < F; ++f) {
+      w.push_back(share / m.storage[f]);
+      w.push_back(m.loss[f] > 0.0 ? share / m.loss[f] : 0.0);
+    }
+    return w;
+  }
+  if (t.modulus_sigma.size() != F || t.phase_sigma.size() != F)
+    throw std::invalid_argument("refit: noise-weighted, but " + t.test->name + " has no noise estimate per frequency");
+  const std::vector<double> sa = usable_sigma(t.modulus_sigma, t.test->name + " (|E*|)");
+  const std::vector<double> sp = usable_sigma(t.phase_sigma, t.test->name + " (phase)");
+  for (std::size_t f = 0; f < F; ++f) {
+    const double A = std::hypot(m.storage[f], m.loss[f]), p = std::atan2(m.loss[f], m.storage[f]);
+    const double rad = sp[f] * std::numbers::pi / 180.0;
+    w.push_back(1.0 / std::hypot(sa[f] * std::cos(p), A * std::sin(p) * rad));
+    w.push_back(1.0 / std::hypot(sa[f] * std::sin(p), A * std::cos(p) * rad));
+  }
+  return w;
+}
+
+/// The refit's targets; `noise_weighted`: each residual divided by its noise (chi2), else relative to the peak.
 Targets make_targets(const ViscoHyperfoam& start, const Specimen& specimen, const std::vector<QuasiStaticTarget>& quasi_static,
-                     const DynamicTest& dynamic, const RefitOptions& options) {
+                     const std::vector<DynamicTarget>& dynamic, const RefitOptions& options, bool noise_weighted) {
   Targets g;
   g.N = start.terms.size();
   g.M = start.prony.size();
@@ -465,32 +562,108 @@ Targets make_targets(const ViscoHyperfoam& start, const Specimen& specimen, cons
     const ContactSamples c = contact_samples(*target.test, target.segments, specimen);
     QuasiStaticResiduals q;
     q.path = make_uniaxial_path(c.time, c.strain, g.tau);
+    q.strain = c.strain;
     q.c = lateral_exponent(g.nu, target.test->lateral);
+    const std::size_t first = target.segments.load_begin - (std::isfinite(c.stress.front()) ? 0 : 1);  // record index of n = 0
+    std::vector<double> sigma;
     for (std::size_t n = 0; n < c.stress.size(); ++n)
       if (std::isfinite(c.stress[n])) {
         q.samples.push_back(n);
         q.stress.push_back(c.stress[n]);
+        if (noise_weighted)
+          sigma.push_back(first + n < target.stress_sigma.size() ? target.stress_sigma[first + n] : 0.0);
       }
-    q.weight = 1.0 / (target.segments.peak_stress * std::sqrt(double(q.samples.size() * quasi_static.size())));
+    const double K = double(q.samples.size());
+    if (noise_weighted) {
+      for (double x : usable_sigma(sigma, target.test->name)) q.weight.push_back(std::sqrt(options.quasi_static_points / K) / x);
+    } else {
+      q.weight.assign(q.samples.size(), 1.0 / (target.segments.peak_stress * std::sqrt(K * double(quasi_static.size()))));
+    }
     g.quasi_static_residuals += q.samples.size();
     g.quasi_static.push_back(std::move(q));
   }
-  g.dynamic = dynamic_path(dynamic.preload_strain, dynamic.moduli.frequency, options.schedule ? &*options.schedule : nullptr,
-                           g.tau, options.finite_amplitude ? strain_amplitudes(dynamic, specimen.thickness) : std::vector<double>{});
+  for (const DynamicTarget& t : dynamic) {
+    DynamicResiduals d;
+    d.schedule = options.schedule;
+    if (d.schedule) {  // the test's own timing keys
+      if (t.test->preload_rate_mm_min > 0.0) d.schedule->preload_rate_mm_min = t.test->preload_rate_mm_min;
+      d.schedule->dwell_s = t.test->dwell_s;
+    }
+    d.path = dynamic_path(t.test->preload_strain, t.test->moduli.frequency, d.schedule ? &*d.schedule : nullptr, g.tau,
+                          options.finite_amplitude ? strain_amplitudes(*t.test, specimen.thickness) : std::vector<double>{});
+    d.moduli = t.test->moduli;
+    d.weight = dynamic_weights(t, dynamic.size(), noise_weighted);
+    g.dynamic.push_back(std::move(d));
+  }
   g.c_dynamic = lateral_exponent(g.nu, Lateral::free);
-  g.moduli = dynamic.moduli;
-  g.dynamic_weight = 1.0 / std::sqrt(2.0 * double(g.moduli.frequency.size()));
+  g.penalty_weight = noise_weighted ? 10.0 * std::sqrt(double(g.residuals())) : 10.0;
   return g;
+}
+
+/// The Prony times with the other parameters: x = [mu_j / mu_scale, alpha_j, a_i, u_i], tau_i = tau0_i 10^u_i, for
+/// the numeric-difference polish of stage 4 (the paths are rebuilt for every set of times).
+struct TimesResidual {
+  const Targets* g;
+  bool operator()(double const* const* p, double* r) const {
+    const std::size_t n = g->parameters();
+    std::vector<double> tau = g->tau;
+    for (std::size_t i = 0; i < g->M; ++i) tau[i] *= std::pow(10.0, p[0][n + i]);
+    return residuals(retimed(*g, tau), p[0], r);
+  }
+};
+
+struct TimesOutcome {
+  std::vector<double> x, tau;  ///< parameters as in Targets (for the new times) and the times [s]
+  double cost = 0.0;
+  bool usable = false;
+  std::string report;
+  int evaluations = 0;
+};
+
+/// Stage 4: from the polished x, the Prony times too, each within a factor 10^times_range of its start, jointly with
+/// every other parameter (bounds of the polish; Levenberg-Marquardt, forward differences on the fast model).
+TimesOutcome polish_times(const Targets& g, const std::vector<double>& x0, const RefitOptions& options) {
+  const std::size_t n = g.parameters(), m = n + g.M;
+  const Bounds b = polish_bounds(g, x0, false, options, g.M, options.times_range);
+  std::vector<double> x = x0;
+  x.resize(m, 0.0);
+  for (std::size_t i = 0; i < m; ++i) x[i] = std::clamp(x[i], b.lower[i], b.upper[i]);
+  ceres::NumericDiffOptions nd;
+  nd.relative_step_size = 1e-6;
+  auto* cost = new ceres::DynamicNumericDiffCostFunction<TimesResidual>(new TimesResidual{&g}, ceres::TAKE_OWNERSHIP, nd);
+  cost->AddParameterBlock(static_cast<int>(m));
+  cost->SetNumResiduals(static_cast<int>(g.residuals()));
+  ceres::Problem problem;
+  problem.AddResidualBlock(cost, nullptr, x.data());
+  add_ratio_bound_and_box(problem, x.data(), g, b, options);
+  ceres::Solver::Options so = dense_fit_options({1e-10, 1e-12, 1e-8, options.times_iterations});
+  ceres::Solver::Summary summary;
+  ceres::Solve(so, &problem, &summary);
+  TimesOutcome out;
+  out.usable = summary.IsSolutionUsable();
+  out.cost = summary.final_cost;
+  out.report = summary.BriefReport();
+  out.evaluations = summary.num_residual_evaluations + summary.num_jacobian_evaluations * int(m + 1);
+  out.tau = g.tau;
+  for (std::size_t i = 0; i < g.M; ++i) out.tau[i] *= std::pow(10.0, x[n + i]);
+  x.resize(n);
+  out.x = x;
+  return out;
 }
 
 }  // namespace
 
-RefitResult refit(const ViscoHyperfoam& start, const Specimen& specimen, const std::vector<QuasiStaticTarget>& quasi_static,
-                  const DynamicTest& dynamic, const RefitOptions& options) {
+namespace {
+
+/// One round of stages 1-4 from `start` (its exponents and Prony times seed the search).
+RefitResult refit_round(const ViscoHyperfoam& start, const Specimen& specimen, const std::vector<QuasiStaticTarget>& quasi_static,
+                        const std::vector<DynamicTarget>& dynamic, const RefitOptions& options) {
   const auto clock0 = std::chrono::steady_clock::now();
   if (quasi_static.empty()) throw std::invalid_argument("refit: no quasi-static test");
+  if (dynamic.empty()) throw std::invalid_argument("refit: no dynamic test");
   if (start.terms.empty()) throw std::invalid_argument("refit: no hyperfoam term");
-  const Targets g = make_targets(start, specimen, quasi_static, dynamic, options);
+  Targets g = make_targets(start, specimen, quasi_static, dynamic, options, options.noise_weighted);
+  Targets shown = options.noise_weighted ? make_targets(start, specimen, quasi_static, dynamic, options, false) : g;
   const std::size_t N = g.N, R = g.residuals();
   double peak_strain = 0.0;
   for (const QuasiStaticTarget& t : quasi_static) peak_strain = std::max(peak_strain, t.segments.peak_strain);
@@ -498,13 +671,15 @@ RefitResult refit(const ViscoHyperfoam& start, const Specimen& specimen, const s
   RefitResult result;
   result.start = start;
   result.material = start;
-  std::vector<double> r(R);
+  std::vector<double> r(R), r_shown(R);
+  // The cost in the refit's metric; qs, dyn: the RMS relative errors reported (peak-relative, E' and E'').
   auto evaluate = [&](const std::vector<double>& x, double& qs, double& dyn) {
     residuals(g, x.data(), r.data());
+    residuals(shown, x.data(), r_shown.data());
     ++result.evaluations;
-    qs = norm_of(r, 0, g.quasi_static_residuals);
-    dyn = norm_of(r, g.quasi_static_residuals, R);
-    return 0.5 * (qs * qs + dyn * dyn);
+    qs = norm_of(r_shown, 0, shown.quasi_static_residuals);
+    dyn = norm_of(r_shown, shown.quasi_static_residuals, R);
+    return 0.5 * std::pow(norm_of(r, 0, R), 2);
   };
   result.cost_start = evaluate(pack(g, start), result.quasi_static_rms_start, result.dynamic_rms_start);
 
@@ -578,14 +753,32 @@ RefitResult refit(const ViscoHyperfoam& start, const Specimen& specimen, const s
     const Polished& best = polished.front();
     result.converged = true;
     result.report = best.report;
-    result.material = unpack(g, best.x);
-    result.cost = evaluate(best.x, result.quasi_static_rms, result.dynamic_rms);
+    std::vector<double> x = best.x;
+    if (options.times_range > 0.0 && g.M > 0) {  // 4. the Prony times too, kept when lower and still stable
+      const TimesOutcome t = polish_times(g, best.x, options);
+      result.evaluations += t.evaluations;
+      if (t.usable && t.cost < best.cost && is_stable(t.x)) {
+        g = retimed(g, t.tau);
+        shown = retimed(shown, t.tau);
+        x = t.x;
+        result.report += "; Prony times: " + t.report;
+        result.times_moved = true;
+      }
+    }
+    result.material = unpack(g, x);
+    result.cost = evaluate(x, result.quasi_static_rms, result.dynamic_rms);
   } else {
     result.report = polished.empty() ? "no usable start" : polished.front().report;
     result.quasi_static_rms = result.quasi_static_rms_start;
     result.dynamic_rms = result.dynamic_rms_start;
     result.cost = result.cost_start;
   }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();
+  return result;
+}
+
+/// Stability, improvement and the rejection reason of a finished refit.
+void judge(RefitResult& result, double peak_strain, const RefitOptions& options) {
   result.improved = result.cost < result.cost_start;
   const material::Hyperfoam refitted(result.material.terms);
   result.stable = material::check_stability(refitted, -peak_strain, options.stability_tension).stable();
@@ -608,7 +801,35 @@ RefitResult refit(const ViscoHyperfoam& start, const Specimen& specimen, const s
       why.push_back("no improvement: joint cost " + std::to_string(result.cost_start) + " -> " + std::to_string(result.cost));
     for (const auto& w : why) result.rejection += (result.rejection.empty() ? "" : "; ") + w;
   }
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();
+}
+
+}  // namespace
+
+RefitResult refit(const ViscoHyperfoam& start, const Specimen& specimen, const std::vector<QuasiStaticTarget>& quasi_static,
+                  const std::vector<DynamicTarget>& dynamic, const RefitOptions& options) {
+  RefitResult result = refit_round(start, specimen, quasi_static, dynamic, options);
+  // Once the times moved, the exponents are searched again about them (the screen ran with the start's times).
+  for (int round = 1; round < options.rounds && result.converged && result.times_moved; ++round) {
+    RefitResult next = refit_round(result.material, specimen, quasi_static, dynamic, options);
+    next.iterations += result.iterations;
+    next.evaluations += result.evaluations;
+    next.starts += result.starts;
+    next.seconds += result.seconds;
+    if (!(next.converged && next.cost < result.cost)) {
+      result.iterations = next.iterations, result.evaluations = next.evaluations;
+      result.starts = next.starts, result.seconds = next.seconds;
+      break;
+    }
+    next.start = result.start;
+    next.cost_start = result.cost_start;
+    next.quasi_static_rms_start = result.quasi_static_rms_start;
+    next.dynamic_rms_start = result.dynamic_rms_start;
+    next.times_moved = true;
+    result = std::move(next);
+  }
+  double peak_strain = 0.0;
+  for (const QuasiStaticTarget& t : quasi_static) peak_strain = std::max(peak_strain, t.segments.peak_strain);
+  judge(result, peak_strain, options);
   return result;
 }
 

@@ -23,6 +23,8 @@ struct FitCliOptions {
   std::string default_material = "refit";
   std::string normalisation = "tangent";
   std::string refit_on = "calibration";
+  std::string refit_weights = "peak";
+  bool free_tau = false;
   int cycles = 20, fit_cycles = 10;
   double preload_rate = 30.0;
   bool relaxed_preload = false;
@@ -36,7 +38,7 @@ void fit_hyperfoam_campaign(const FitCliOptions& opt, const CLI::App& sub) {
   std::cout << "fit: reading " << opt.campaign << " (hyperfoam-only campaign)\n";
   HyperfoamCampaign campaign = read_hyperfoam_campaign(opt.campaign);
   if (sub.count("--terms") > 0) campaign.settings.terms = opt.terms;
-  for (const char* o : {"--tau", "--no-refit", "--default", "--normalisation", "--refit-on", "--dynamic-cycles",
+  for (const char* o : {"--tau", "--no-refit", "--default", "--normalisation", "--refit-on", "--refit-weights", "--free-tau", "--dynamic-cycles",
                         "--fit-cycles", "--preload-rate", "--relaxed-preload", "--nu"})
     if (sub.count(o) > 0) std::cout << "fit: note: " << o << " does not apply to a hyperfoam-only campaign (ignored)\n";
   std::cout << "fit: " << campaign.tests.size() << " test(s), " << campaign.settings.terms << " term(s), nu "
@@ -66,9 +68,15 @@ const cushion::tools::Registrar reg{"fit", [](CLI::App& app) {
                   "relative Prony moduli of the paper's material: 'tangent' (a_i = E_i/K_v) or 'paper' (g_i = E_i/E_0)")
       ->check(CLI::IsMember({"paper", "tangent"}));
   sub->add_option("--refit-on", opt->refit_on,
-                  "quasi-static tests of the refit: 'calibration' (every test marked calibration; several rates "
-                  "separate the long-term curve from the slow Prony terms) or 'all' (also the validation ones)")
+                  "tests of the refit: 'calibration' (every quasi-static and dynamic test marked calibration; several "
+                  "rates separate the long-term curve from the slow Prony terms) or 'all' (also the validation ones)")
       ->check(CLI::IsMember({"calibration", "all"}));
+  sub->add_option("--refit-weights", opt->refit_weights,
+                  "residuals of the refit: 'peak' (relative to each test's peak stress and to E', E'') or 'noise' (over "
+                  "each sample's noise estimate, chi2, as compare and diagnose weigh them; diagnose's base fit)")
+      ->check(CLI::IsMember({"peak", "noise"}));
+  sub->add_flag("--free-tau", opt->free_tau,
+                "the refit also moves each Prony time within a factor 3.16 of --tau's (default: the times are kept)");
   sub->add_option("--dynamic-cycles", opt->cycles, "dynamic test: cycles run per frequency (paper: 20)")->check(CLI::PositiveNumber);
   sub->add_option("--fit-cycles", opt->fit_cycles, "dynamic test: last cycles measured per frequency (10)")->check(CLI::PositiveNumber);
   sub->add_option("--preload-rate", opt->preload_rate, "dynamic test: preload ramp speed [mm/min] (paper: 30)")
@@ -95,7 +103,9 @@ const cushion::tools::Registrar reg{"fit", [](CLI::App& app) {
       o.tau = opt->tau;
     }
     o.refit = !opt->no_refit;
-    o.refit_all_quasi_static = opt->refit_on == "all";
+    o.refit_on_all_tests = opt->refit_on == "all";
+    o.noise_weighted_refit = opt->refit_weights == "noise";
+    if (opt->free_tau) o.refit_options.times_range = 0.5;
     if (opt->fit_cycles > opt->cycles) throw cushion::InputError("--fit-cycles: must not exceed --dynamic-cycles");
     o.dynamic_schedule.cycles = opt->cycles;
     o.dynamic_schedule.fit_cycles = opt->fit_cycles;

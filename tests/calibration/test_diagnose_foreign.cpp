@@ -12,7 +12,8 @@
 //    no effect is named; the verdict points at the base calibration; the base refit alone (hyperfoam and
 //    Prony moduli) reaches the noise level (error/noise <= 1.5);
 //  - control: "No effect is missing";
-//  - the realistic workflow: the baseline is `cushion fit`'s material fitted on the SAME campaign, so the fit
+//  - the realistic workflow: the baseline is `cushion fit`'s material fitted on the SAME campaign (with the options of
+//    diagnose's raw path, diagnose_base_fit_options()), so the fit
 //    has absorbed part of the hidden effect into the base moduli; with joint_base (effect and base moduli
 //    fitted together) the right family leads the winner (Bouc-Wen -> friction, exponential preload Prony ->
 //    strain_dependent_prony; without joint_base both gave "cannot tell from a base error"), chi2 falls by
@@ -180,7 +181,7 @@ void expect_family_from_fitted_baseline(cf::ForeignCase c, const std::vector<std
   const cf::ForeignCampaign fc = cf::make_foreign_campaign(c, dir);
   const cc::Campaign campaign = cc::read_campaign(fc.manifest);
   std::ostringstream log;
-  const cc::FitResult fit = cc::fit_pipeline(campaign, cc::FitOptions{}, log);
+  const cc::FitResult fit = cc::fit_pipeline(campaign, cc::diagnose_base_fit_options(), log);
   const cushion::material::MaterialSpec fitted =
       cc::to_spec(fit.default_material, "foam", "fitted on the foreign campaign", campaign.specimen.density);
   cc::DiagnoseOptions o;

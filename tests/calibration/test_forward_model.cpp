@@ -7,18 +7,14 @@
 //    once the dynamic noise is estimated per frequency (a constant-acceleration sweep: the force amplitude falls as
 //    1/f^2, the load cell's floor dominates at 20 Hz and is 10-100 x smaller at 1 Hz).
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <sstream>
 
-#include <nlohmann/json.hpp>
-
 #include "calibration/compare.hpp"
 #include "calibration/diagnose.hpp"
+#include "foreign_program.hpp"
 #include "material/io/material_file.hpp"
 
 namespace cc = cushion::calibration;
@@ -30,30 +26,11 @@ fs::path hidden() { return fs::path(CUSHION_SOURCE_DIR) / "cases" / "hidden_effe
 
 /// Three foreign control campaigns (no effect), generated once per process.
 fs::path foreign_controls() {
-  static const fs::path dir = [] {
-    const fs::path d = fs::temp_directory_path() / ("cushion_test_forward_" + std::to_string(::getpid()));
-    fs::remove_all(d);
-    const std::string command = std::string("\"") + FOREIGN_CAMPAIGNS_BINARY + "\" --out \"" + d.string() +
-                                "\" --count 3 --seed 11 --pairs 0 --controls 3 > /dev/null";
-    EXPECT_EQ(std::system(command.c_str()), 0) << command;
-    return d;
-  }();
+  static const fs::path dir = cushion::foreign_program::generate("forward", 3, 11, 0, 3);
   return dir;
 }
 
-/// The truth's base foam (truth.json "base") as a cushion material file: hyperfoam with nu = 0 (the foreign
-/// machine's F = diag(l, 1, 1)) and the same relative Prony moduli (both FEBio-form decorators).
-cushion::material::MaterialDefinition exact_material(const fs::path& campaign_dir) {
-  std::ifstream in(campaign_dir / "truth.json");
-  const nlohmann::json base = nlohmann::json::parse(in).at("base");
-  nlohmann::json m{{"name", "foreign_truth"}, {"density_kg_m3", base.at("density_kg_m3")}};
-  for (const auto& t : base.at("hyperfoam"))
-    m["hyperfoam"]["terms"].push_back({{"mu_kPa", t.at("mu_kPa")}, {"alpha", t.at("alpha")}, {"nu", 0}});
-  m["viscoelastic"]["moduli"] = "long_term";
-  for (const auto& p : base.at("prony")) m["viscoelastic"]["prony"].push_back({{"g", p.at("g")}, {"tau_s", p.at("tau_s")}});
-  std::ofstream(campaign_dir / "exact_material.json") << m.dump(1);
-  return cushion::material::read_material_file(campaign_dir / "exact_material.json");
-}
+using cushion::foreign_program::exact_material;
 
 }  // namespace
 

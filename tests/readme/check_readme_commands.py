@@ -39,9 +39,6 @@ EXPENSIVE = {
     "bash cases/sitbar_quasistatic/plot.sh out_sitbar": "needs the 2 min SIT-BAR run above",
     "build/tools/cushion run cases/sitbar_quasistatic/case_full.json": "full model, minutes",
     "nice bash cases/sitbar_quasistatic/mesh_convergence.sh": "3 meshes, about 12 min",
-    "build/tools/cushion diagnose cases/hidden_effects/campaign_friction/campaign.json -o diag_raw":
-        "fit plus joint diagnosis of every candidate, several minutes (CliDiagnose.RawCampaignIsCalibratedFirst... runs it "
-        "with one candidate)",
 }
 
 COMMAND_START = re.compile(r"^(build/|bash |sh |nice |python3 |cases/|tools/|[A-Z_]+=\S+ )")
