@@ -18,7 +18,7 @@
 //    fitted together) the right family leads the winner (Bouc-Wen -> friction, exponential preload Prony ->
 //    strain_dependent_prony; without joint_base both gave "cannot tell from a base error"), chi2 falls by
 //    2x, and the extended material carries the refitted base. Not met, so disabled with the measured outcome: a
-//    power-law air dashpot (named friction), and Bouc-Wen with a fitted baseline (no effect named) (README).
+//    power-law air dashpot (named friction) (README).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -213,15 +213,11 @@ void expect_family_from_fitted_baseline(cf::ForeignCase c, const std::vector<std
 
 }  // namespace
 
-// NOT MET since the dynamic noise is estimated per frequency (measured 2026-11-24): with the fit's base, the precise
-// low-frequency moduli leave the base refit (moduli and Prony times) at 10.15 x noise, and with the Prony-time factors
-// refitted in every joint candidate (the code as it is) no effect is named: friction + strain_dependent_prony leads in
-// sample (dBIC 6.583e4 vs the base refit's 6.392e4) but predicts the tests left out worse (held-out chi2 2.009e5 vs
-// 7.541e4), nor do the next two supported candidates. Variants measured on the same case: one noise per sweep named
-// friction; the per-frequency noise without the Prony-time factors named mullins; candidates keeping the reference's
-// times named strain_dependent_prony (worst test 9.9 x). Disabled so that the suite states what holds; run with
-// --gtest_also_run_disabled_tests.
-TEST(DiagnoseForeignFittedBaseline, DISABLED_BoucWenIsNamedAsFriction) {
+// Met again since the base is fitted as diagnose fits it from raw data (diagnose_base_fit_options: noise-weighted on
+// every test, free Prony times; measured 2026-11-24): friction named, chi2/N 14.5 -> 6.53, worst test 12.0 -> 6.03x
+// noise (the base refit alone 9.48x); the foreign Bouc-Wen form is not our elasto-plastic branch, so the verdict lists
+// the tests still beyond noise. Before (the fit's default options) no effect was named.
+TEST(DiagnoseForeignFittedBaseline, BoucWenIsNamedAsFriction) {
   expect_family_from_fitted_baseline(cf::ForeignCase::bouc_wen, {"friction"});
 }
 
