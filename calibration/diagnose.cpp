@@ -573,6 +573,12 @@ std::vector<CandidateFit> fit_pairs(const CandidateJobs& c, const std::vector<Ca
   return pairs;
 }
 
+/// The base-refit reference converged and brings every test to the noise level: nothing is left for an effect.
+bool base_refit_at_noise(const Diagnosis& d, const DiagnoseOptions& options) {
+  return d.base_refit && d.base_refit->converged &&
+         d.base_refit->compare.at_noise_level(options.compare.noise_level_ratio);
+}
+
 /// dBIC of the base-refit reference when it converged (0 when below 0 or absent).
 double base_gain(const Diagnosis& d) {
   return d.base_refit && d.base_refit->converged ? std::max(0.0, d.base_refit->delta_bic) : 0.0;
@@ -584,9 +590,7 @@ double base_gain(const Diagnosis& d) {
 void rank_candidates(std::vector<CandidateFit> fits, std::vector<CandidateFit> pairs, const std::vector<std::size_t>& top,
                      const DiagnoseOptions& options, Diagnosis& d) {
   const double gain = base_gain(d);
-  // A base refit that brings every test to the noise level leaves nothing for an effect to explain.
-  const bool base_enough = d.base_refit && d.base_refit->converged &&
-                           d.base_refit->compare.at_noise_level(options.compare.noise_level_ratio);
+  const bool base_enough = base_refit_at_noise(d, options);
   for (auto& f : fits) f.supported = !base_enough && f.converged && f.delta_bic > gain + options.strong_evidence;
   const double best_single = top.empty() ? 0.0 : fits[top.front()].delta_bic;
   for (auto& f : pairs)
@@ -779,9 +783,7 @@ void no_winner_verdict(const DiagnoseOptions& options, Diagnosis& d) {
          "(`cushion fit`, e.g. --refit-on all), check the campaign's protocol keys, or add a test that separates "
          "the candidates (another rate or preload). ";
   }
-  const bool base_enough = d.base_refit && d.base_refit->converged &&
-                           d.base_refit->compare.at_noise_level(options.compare.noise_level_ratio);
-  if (base_enough) {
+  if (base_refit_at_noise(d, options)) {
     const CandidateFit& b = *d.base_refit;
     o << "No effect is missing: refitting only the base (hyperfoam mu_i, Prony g_i" << (options.base_times ? " and tau_i" : "")
       << ", no effect) brings every test within " << fmt(options.compare.noise_level_ratio, 2) << "x its noise (chi2/N "

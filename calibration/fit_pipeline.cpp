@@ -450,7 +450,7 @@ FitOptions diagnose_base_fit_options() {
   FitOptions o;
   o.refit_on_all_tests = true;
   o.noise_weighted_refit = true;
-  o.refit_options.times_range = 0.5;
+  o.refit_options.times_range = free_times_range;
   return o;
 }
 

@@ -602,13 +602,23 @@ Targets make_targets(const ViscoHyperfoam& start, const Specimen& specimen, cons
 
 /// The Prony times with the other parameters: x = [mu_j / mu_scale, alpha_j, a_i, u_i], tau_i = tau0_i 10^u_i, for
 /// the numeric-difference polish of stage 4 (the paths are rebuilt for every set of times).
+/// The Prony times [s] of `g`'s times scaled by 10^u_i.
+std::vector<double> times_at(const Targets& g, const double* u) {
+  std::vector<double> tau = g.tau;
+  for (std::size_t i = 0; i < g.M; ++i) tau[i] *= std::pow(10.0, u[i]);
+  return tau;
+}
+
+/// The paths are rebuilt only when the times change: a forward-difference Jacobian perturbs the other 2N + M
+/// parameters on the same times. Ceres evaluates it on one thread (dense_fit_options), so the cache is not shared.
 struct TimesResidual {
   const Targets* g;
+  mutable std::vector<double> cached_tau;
+  mutable std::optional<Targets> cached;
   bool operator()(double const* const* p, double* r) const {
-    const std::size_t n = g->parameters();
-    std::vector<double> tau = g->tau;
-    for (std::size_t i = 0; i < g->M; ++i) tau[i] *= std::pow(10.0, p[0][n + i]);
-    return residuals(retimed(*g, tau), p[0], r);
+    const std::vector<double> tau = times_at(*g, p[0] + g->parameters());
+    if (!cached || tau != cached_tau) cached = retimed(*g, tau), cached_tau = tau;
+    return residuals(*cached, p[0], r);
   }
 };
 
@@ -644,8 +654,7 @@ TimesOutcome polish_times(const Targets& g, const std::vector<double>& x0, const
   out.cost = summary.final_cost;
   out.report = summary.BriefReport();
   out.evaluations = summary.num_residual_evaluations + summary.num_jacobian_evaluations * int(m + 1);
-  out.tau = g.tau;
-  for (std::size_t i = 0; i < g.M; ++i) out.tau[i] *= std::pow(10.0, x[n + i]);
+  out.tau = times_at(g, x.data() + n);
   x.resize(n);
   out.x = x;
   return out;
@@ -654,6 +663,13 @@ TimesOutcome polish_times(const Targets& g, const std::vector<double>& x0, const
 }  // namespace
 
 namespace {
+
+/// The largest peak strain of the quasi-static targets [-] (the range the hyperfoam must be stable over).
+double peak_strain_of(const std::vector<QuasiStaticTarget>& quasi_static) {
+  double peak = 0.0;
+  for (const QuasiStaticTarget& t : quasi_static) peak = std::max(peak, t.segments.peak_strain);
+  return peak;
+}
 
 /// One round of stages 1-4 from `start` (its exponents and Prony times seed the search).
 RefitResult refit_round(const ViscoHyperfoam& start, const Specimen& specimen, const std::vector<QuasiStaticTarget>& quasi_static,
@@ -665,8 +681,7 @@ RefitResult refit_round(const ViscoHyperfoam& start, const Specimen& specimen, c
   Targets g = make_targets(start, specimen, quasi_static, dynamic, options, options.noise_weighted);
   Targets shown = options.noise_weighted ? make_targets(start, specimen, quasi_static, dynamic, options, false) : g;
   const std::size_t N = g.N, R = g.residuals();
-  double peak_strain = 0.0;
-  for (const QuasiStaticTarget& t : quasi_static) peak_strain = std::max(peak_strain, t.segments.peak_strain);
+  const double peak_strain = peak_strain_of(quasi_static);
 
   RefitResult result;
   result.start = start;
@@ -811,25 +826,22 @@ RefitResult refit(const ViscoHyperfoam& start, const Specimen& specimen, const s
   // Once the times moved, the exponents are searched again about them (the screen ran with the start's times).
   for (int round = 1; round < options.rounds && result.converged && result.times_moved; ++round) {
     RefitResult next = refit_round(result.material, specimen, quasi_static, dynamic, options);
-    next.iterations += result.iterations;
-    next.evaluations += result.evaluations;
-    next.starts += result.starts;
-    next.seconds += result.seconds;
-    if (!(next.converged && next.cost < result.cost)) {
-      result.iterations = next.iterations, result.evaluations = next.evaluations;
-      result.starts = next.starts, result.seconds = next.seconds;
-      break;
+    const bool better = next.converged && next.cost < result.cost;
+    if (better) {  // the outcome of this round, measured from the original start
+      next.start = result.start;
+      next.cost_start = result.cost_start;
+      next.quasi_static_rms_start = result.quasi_static_rms_start;
+      next.dynamic_rms_start = result.dynamic_rms_start;
+      next.times_moved = true;
+      std::swap(result, next);
     }
-    next.start = result.start;
-    next.cost_start = result.cost_start;
-    next.quasi_static_rms_start = result.quasi_static_rms_start;
-    next.dynamic_rms_start = result.dynamic_rms_start;
-    next.times_moved = true;
-    result = std::move(next);
+    result.iterations += next.iterations;  // the effort of both rounds
+    result.evaluations += next.evaluations;
+    result.starts += next.starts;
+    result.seconds += next.seconds;
+    if (!better) break;
   }
-  double peak_strain = 0.0;
-  for (const QuasiStaticTarget& t : quasi_static) peak_strain = std::max(peak_strain, t.segments.peak_strain);
-  judge(result, peak_strain, options);
+  judge(result, peak_strain_of(quasi_static), options);
   return result;
 }
 

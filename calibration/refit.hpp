@@ -36,6 +36,9 @@
 
 namespace cushion::calibration {
 
+/// The half-range [decades] of the Prony times when they are freed (`cushion fit --free-tau`, diagnose's base fit).
+inline constexpr double free_times_range = 0.5;
+
 struct RefitOptions {
   std::vector<double> alpha_grid;   ///< start exponents; empty: alpha_grid(N, 50) of exponent_grid.hpp (both signs)
   int relaxed_kept = 32;            ///< best subsets of the relaxed screen solved by alternating least squares

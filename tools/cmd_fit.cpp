@@ -105,7 +105,7 @@ const cushion::tools::Registrar reg{"fit", [](CLI::App& app) {
     o.refit = !opt->no_refit;
     o.refit_on_all_tests = opt->refit_on == "all";
     o.noise_weighted_refit = opt->refit_weights == "noise";
-    if (opt->free_tau) o.refit_options.times_range = 0.5;
+    if (opt->free_tau) o.refit_options.times_range = free_times_range;
     if (opt->fit_cycles > opt->cycles) throw cushion::InputError("--fit-cycles: must not exceed --dynamic-cycles");
     o.dynamic_schedule.cycles = opt->cycles;
     o.dynamic_schedule.fit_cycles = opt->fit_cycles;
