@@ -196,6 +196,14 @@ std::vector<PendingTest> scan_tests(const io::JsonNode& tests, const std::filesy
   return pending;
 }
 
+/// The keys of `keys` a test object does not give.
+std::vector<std::string> unrecorded_keys(const io::JsonNode& t, std::initializer_list<const char*> keys) {
+  std::vector<std::string> out;
+  for (const char* k : keys)
+    if (!t.find(k)) out.push_back(k);
+  return out;
+}
+
 /// A quasi-static test: rate [mm/min in the file, mm/s here], lateral condition, record.
 QuasiStaticTest read_quasi_static_test(const io::JsonNode& t, std::string name, const std::filesystem::path& file,
                                        TestUse use, const Specimen& specimen) {
@@ -207,6 +215,7 @@ QuasiStaticTest read_quasi_static_test(const io::JsonNode& t, std::string name, 
   if (auto l = t.find("lateral")) q.lateral = l->choice({"free", "constrained"}) == "free" ? Lateral::free : Lateral::constrained;
   q.prior = read_prior_loading(t);
   if (auto l = t.find("lift_off")) q.lift_off = l->boolean();
+  q.unrecorded = unrecorded_keys(t, {"preflex_cycles", "lift_off"});
   q.record = read_quasi_static_csv(file, specimen);
   return q;
 }
@@ -228,6 +237,9 @@ DynamicTest read_dynamic_test(const io::JsonNode& t, std::string name, const std
   else if (d.fit_cycles > d.cycles) t.at("cycles").fail("fewer than the default fit_cycles 10: give fit_cycles too");
   d.prior = read_prior_loading(t);
   if (auto l = t.find("lift_off")) d.lift_off = l->boolean();
+  d.unrecorded = unrecorded_keys(t, {"amplitude_convention", "preload_rate_mm_min", "dwell_before_sweep_s", "cycles",
+                                     "fit_cycles", "preflex_cycles", "lift_off"});
+  if (t.find("amplitude_is")) std::erase(d.unrecorded, std::string("amplitude_convention"));  // its older name
   d.moduli = read_dynamic_csv(file, specimen);
   return d;
 }

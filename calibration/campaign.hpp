@@ -49,6 +49,7 @@ struct QuasiStaticTest {
   double rate = 0.0;                 ///< crosshead speed [mm/s] (file: rate_mm_min)
   PriorLoading prior;                ///< preflex and rest before the test
   bool lift_off = true;              ///< platen that only pushes (file: lift_off)
+  std::vector<std::string> unrecorded;  ///< protocol keys the manifest leaves out (their defaults are assumed)
   StressStrainRecord record;         ///< nominal, compression positive, MPa
 };
 
@@ -65,6 +66,7 @@ struct DynamicTest {
   int fit_cycles = 10;                  ///< last cycles fitted for |E*| and phase (file: fit_cycles)
   PriorLoading prior;                   ///< preflex and rest before the preload
   bool lift_off = false;                ///< platen that only pushes (file: lift_off)
+  std::vector<std::string> unrecorded;  ///< protocol keys the manifest leaves out (their defaults are assumed)
   DynamicModuli moduli;                 ///< E', E'' [MPa] vs frequency [Hz], increasing
 };
 

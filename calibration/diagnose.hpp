@@ -3,6 +3,11 @@
 /// from a calibrated material, judged on every test of a campaign (calibration and validation alike).
 ///
 /// Method (generic: no effect is known by name here):
+///  0. Protocol (options.search_protocol): the dynamic protocol keys the campaign does not record (cycles, preload
+///     ramp, dwell, amplitude convention) are searched as nuisance parameters with the baseline material
+///     (protocol_search.hpp); values that lower chi2 by more than strong_evidence, and still do once the base is
+///     refitted under them and under the defaults (the reference fit of step 4), replace the defaults for every later
+///     step; the report lists what each assumption changes.
 ///  1. Baseline: compare_campaign (compare.hpp) with the data-only noise estimates. If every test is
 ///     within `compare.noise_level_ratio` of its noise, the verdict is "no effect is missing" and no
 ///     candidate is fitted (nothing is left to explain).
@@ -39,6 +44,7 @@
 #include <nlohmann/json.hpp>
 
 #include "calibration/compare.hpp"
+#include "calibration/protocol_search.hpp"
 #include "material/io/material_file.hpp"
 
 namespace cushion::calibration {
@@ -79,6 +85,9 @@ struct DiagnoseOptions {
   bool held_out = false;
   int held_out_iterations = 6;    ///< Ceres iterations per held-out refit (started from the full fit)
   double held_out_margin = 10.0;  ///< held-out chi2 the candidate must save against the base refit [-]
+  /// Step 0: unrecorded dynamic protocol keys searched as nuisance parameters (a value kept when it lowers the
+  /// baseline's chi2 by more than strong_evidence). false: the defaults assumed.
+  bool search_protocol = true;
 };
 
 /// Leave-one-test-out check of a candidate that the in-sample evidence supports. For each material-level test i
@@ -118,6 +127,7 @@ struct CandidateFit {
 };
 
 struct Diagnosis {
+  std::optional<ProtocolSearch> protocol;  ///< step 0 (options.search_protocol); its campaign is the one diagnosed
   CompareResult baseline;
   std::vector<TestNoise> noise;
   std::size_t residuals = 0;               ///< N

@@ -54,6 +54,34 @@ std::string held_out_markdown(const std::vector<HeldOutCheck>& checks) {
   return o.str();
 }
 
+/// The protocol search: per unrecorded key, the dynamic chi2 with each value tried.
+std::string protocol_markdown(const ProtocolSearch& p) {
+  std::ostringstream o;
+  o << "\n## Protocol assumptions (keys the campaign does not record)\n\n"
+    << "Each key searched over plausible values with the baseline material, the others at their chosen values; chi2 of "
+       "the dynamic tests (sum of squared noise-normalised residuals), " << p.runs << " runs, " << fmt(p.seconds, 2)
+    << " s. A value replaces the default only when it lowers chi2 by more than the evidence threshold.\n\n"
+    << "| key | tests | default | chosen | chi2 with each value |\n|---|---|---|---|---|\n";
+  for (const auto& k : p.keys) {
+    o << "| " << k.key << " | " << io::join(k.tests, ", ") << " | " << k.assumed << " | " << k.chosen << " |";
+    for (const auto& v : k.tried) o << " " << v.label << ": " << (std::isfinite(v.chi2) ? fmt(v.chi2, 4) : "n/a") << ";";
+    o << " |\n";
+  }
+  return o.str();
+}
+
+nlohmann::json protocol_json(const ProtocolSearch& p) {
+  nlohmann::json keys = nlohmann::json::array();
+  for (const auto& k : p.keys) {
+    nlohmann::json tried = nlohmann::json::array();
+    for (const auto& v : k.tried)
+      tried.push_back({{"value", v.label}, {"chi2", std::isfinite(v.chi2) ? nlohmann::json(v.chi2) : nlohmann::json(nullptr)}});
+    keys.push_back({{"key", k.key}, {"tests", k.tests}, {"assumed", k.assumed}, {"chosen", k.chosen}, {"tried", tried}});
+  }
+  return {{"keys", keys}, {"chi2_assumed", p.chi2_assumed}, {"chi2_chosen", p.chi2_chosen}, {"changed", p.changed()},
+          {"runs", p.runs}, {"seconds", p.seconds}};
+}
+
 }  // namespace
 
 nlohmann::json diagnosis_json(const Diagnosis& d) {
@@ -66,6 +94,7 @@ nlohmann::json diagnosis_json(const Diagnosis& d) {
   j["warnings"] = d.warnings;
   j["seconds"] = d.seconds;
   j["baseline"] = compare_json(d.baseline, "baseline");
+  if (d.protocol) j["protocol"] = protocol_json(*d.protocol);
   j["winner"] = d.winner ? nlohmann::json(d.candidates[*d.winner].name()) : nlohmann::json(nullptr);
   j["winner_at_noise_level"] = d.winner_at_noise_level;
   j["fragment"] = d.fragment;
@@ -99,6 +128,7 @@ std::string diagnosis_markdown(const Diagnosis& d) {
     o << "\n## Warnings\n\n";
     for (const auto& w : d.warnings) o << "- " << w << "\n";
   }
+  if (d.protocol && !d.protocol->keys.empty()) o << protocol_markdown(*d.protocol);
   o << "\n## Baseline vs every test\n\n" << compare_table(d.baseline);
   o << "\n## Evidence in the data (signatures)\n\n";
   for (const auto& e : d.evidence) o << "- " << e << "\n";

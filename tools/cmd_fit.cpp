@@ -25,6 +25,7 @@ struct FitCliOptions {
   std::string refit_on = "calibration";
   std::string refit_weights = "peak";
   bool free_tau = false;
+  int extra_terms = 1;
   int cycles = 20, fit_cycles = 10;
   double preload_rate = 30.0;
   bool relaxed_preload = false;
@@ -38,7 +39,7 @@ void fit_hyperfoam_campaign(const FitCliOptions& opt, const CLI::App& sub) {
   std::cout << "fit: reading " << opt.campaign << " (hyperfoam-only campaign)\n";
   HyperfoamCampaign campaign = read_hyperfoam_campaign(opt.campaign);
   if (sub.count("--terms") > 0) campaign.settings.terms = opt.terms;
-  for (const char* o : {"--tau", "--no-refit", "--default", "--normalisation", "--refit-on", "--refit-weights", "--free-tau", "--dynamic-cycles",
+  for (const char* o : {"--tau", "--no-refit", "--extra-terms", "--default", "--normalisation", "--refit-on", "--refit-weights", "--free-tau", "--dynamic-cycles",
                         "--fit-cycles", "--preload-rate", "--relaxed-preload", "--nu"})
     if (sub.count(o) > 0) std::cout << "fit: note: " << o << " does not apply to a hyperfoam-only campaign (ignored)\n";
   std::cout << "fit: " << campaign.tests.size() << " test(s), " << campaign.settings.terms << " term(s), nu "
@@ -77,6 +78,10 @@ const cushion::tools::Registrar reg{"fit", [](CLI::App& app) {
       ->check(CLI::IsMember({"peak", "noise"}));
   sub->add_flag("--free-tau", opt->free_tau,
                 "the refit also moves each Prony time within a factor 3.16 of --tau's (default: the times are kept)");
+  sub->add_option("--extra-terms", opt->extra_terms,
+                  "the refit also tries N + 1 .. N + this hyperfoam terms, each kept when it halves the joint cost "
+                  "(default 1; 0: N only)")
+      ->check(CLI::Range(0, 2));
   sub->add_option("--dynamic-cycles", opt->cycles, "dynamic test: cycles run per frequency (paper: 20)")->check(CLI::PositiveNumber);
   sub->add_option("--fit-cycles", opt->fit_cycles, "dynamic test: last cycles measured per frequency (10)")->check(CLI::PositiveNumber);
   sub->add_option("--preload-rate", opt->preload_rate, "dynamic test: preload ramp speed [mm/min] (paper: 30)")
@@ -106,6 +111,7 @@ const cushion::tools::Registrar reg{"fit", [](CLI::App& app) {
     o.refit_on_all_tests = opt->refit_on == "all";
     o.noise_weighted_refit = opt->refit_weights == "noise";
     if (opt->free_tau) o.refit_options.times_range = free_times_range;
+    o.extra_refit_terms = opt->extra_terms;
     if (opt->fit_cycles > opt->cycles) throw cushion::InputError("--fit-cycles: must not exceed --dynamic-cycles");
     o.dynamic_schedule.cycles = opt->cycles;
     o.dynamic_schedule.fit_cycles = opt->fit_cycles;

@@ -15,15 +15,17 @@
 
 namespace cushion::foreign_program {
 
-/// `count` campaigns of `foreign_campaigns --seed seed --pairs pairs --controls controls` in a fresh folder under
-/// the temporary directory named `tag` and the process id.
-inline std::filesystem::path generate(const std::string& tag, int count, unsigned long long seed, int pairs, int controls) {
+/// `count` campaigns of `foreign_campaigns --seed seed --pairs pairs --controls controls [options]` in a fresh folder
+/// under the temporary directory named `tag` and the process id.
+inline std::filesystem::path generate(const std::string& tag, int count, unsigned long long seed, int pairs, int controls,
+                                      const std::string& options = "") {
   namespace fs = std::filesystem;
   const fs::path d = fs::temp_directory_path() / ("cushion_test_" + tag + "_" + std::to_string(::getpid()));
   fs::remove_all(d);
   const std::string command = std::string("\"") + FOREIGN_CAMPAIGNS_BINARY + "\" --out \"" + d.string() + "\" --count " +
                               std::to_string(count) + " --seed " + std::to_string(seed) + " --pairs " +
-                              std::to_string(pairs) + " --controls " + std::to_string(controls) + " > /dev/null";
+                              std::to_string(pairs) + " --controls " + std::to_string(controls) + " " + options +
+                              " > /dev/null";
   EXPECT_EQ(std::system(command.c_str()), 0) << command;
   return d;
 }

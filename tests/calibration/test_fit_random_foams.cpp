@@ -20,8 +20,8 @@
 //   2. ACCURACY (issue 15):
 //        - the default's long-term curve within 1 % of the truth's peak stress over [0, peak strain];
 //        - its |E*| about the preload (the solver's model along the test schedule) within 2 % at every frequency.
-// ctest runs both parts on seeds 1..40 (FitRandomFoams.NoFailureAndWithinToleranceOnFortyFoams) and on five former
-// refit misses; the 200-foam acceptance run (about 5 minutes) is DISABLED_:
+// ctest runs both parts on seeds 1..40 (FitRandomFoams.NoFailureAndWithinToleranceOnFortyFoams) and on six former
+// refit misses; the 200-foam acceptance run (about 11 minutes) is DISABLED_:
 //   build/tests/test_calibration --gtest_also_run_disabled_tests --gtest_filter='FitRandomFoams.DISABLED_*'
 // Each prints one line per foam (for a foam off tolerance also the truth, the paper's and the refit's materials with
 // their errors), the count within tolerance and the worst figures. CUSHION_RANDOM_FOAMS="first,count" or
@@ -327,9 +327,11 @@ TEST(FitRandomFoams, NoFailureAndWithinToleranceOnFortyFoams) { run_foams(seed_r
 // Parts 1 and 2 on foams beyond seed 40 that the refit missed before its relaxed global screen, diverse multi-start
 // polish and bound handling (curve 2-82 % of peak off): 70 (4 terms, 3 negative exponents), 139 (all exponents
 // positive, relaxation only at 10 and 100 s: a_i = 0 at the bound stalled the polish), 158 (the better starts had
-// the wrong sign pattern), 188 (two equal exponents with cancelling moduli), 195 (tiny densification terms).
-TEST(FitRandomFoams, FormerRefitMissesWithinTolerance) { run_foams({70, 139, 158, 188, 195}, true); }
+// the wrong sign pattern), 188 (two equal exponents with cancelling moduli), 195 (tiny densification terms); and 117
+// (a 4-term foam: curve 1.01 % of peak with 3 terms, within tolerance only with the N + 1-term refit).
+TEST(FitRandomFoams, FormerRefitMissesWithinTolerance) { run_foams({70, 139, 158, 188, 195, 117}, true); }
 
-// Part 2 (accuracy acceptance) on seeds 1..200: 199/200 (seed 117, a 4-term foam fitted with the default 3 terms,
-// curve 1.03 % of peak); about 5 minutes, so not run by ctest.
+// Part 2 (accuracy acceptance) on seeds 1..200: 200/200 (measured 2026-11-25: worst curve 0.87 % of peak, seed 139;
+// worst |E*| 1.24 %, seed 1); before the N + 1-term refit 199/200 (seed 117, a 4-term foam fitted with 3 terms, curve
+// 1.01 % of peak; 0.29 % with 4). About 11 minutes (3.2 s a fit on two loaded cores), so not run by ctest.
 TEST(FitRandomFoams, DISABLED_TwoHundredNoiseFreeFoamsRoundTrip) { run_foams(seed_range(1, 200), true); }

@@ -134,6 +134,23 @@ TestPlan standard_plan() {
   return plan;
 }
 
+TestPlan drawn_protocol(const TestPlan& plan, Random& random) {
+  TestPlan out = plan;
+  out.unrecorded_protocol = true;
+  static const int cycle_counts[] = {5, 10, 20, 50};
+  const int cycles = cycle_counts[random.index(4)];
+  const double rate = random.log_uniform(10.0, 100.0);
+  const double dwell = random.unit() < 1.0 / 3.0 ? 0.0 : random.log_uniform(10.0, 300.0);
+  out.amplitude_written_as_peak = random.unit() < 0.5;
+  for (auto& p : out.dynamic) {
+    p.cycles = cycles;
+    p.fit_cycles = cycles / 2;
+    p.preload_rate_mm_min = rate;
+    p.dwell_s = dwell;
+  }
+  return out;
+}
+
 std::map<std::string, double> effect_over_noise(const BaseFoam& foam, const std::vector<EffectSpec>& effects,
                                                 const TestPlan& plan) {
   return ratios_between(simulate_noise_free(foam, {}, plan), simulate_noise_free(foam, effects, plan), plan);
@@ -229,12 +246,16 @@ void write_campaign(const CampaignTruth& truth, const TestPlan& plan, const fs::
                "nominal stress amplitude over nominal strain amplitude; phase of stress relative to strain"},
               {"frequency_Hz", "dynamic_modulus_kPa", "phase_deg"},
               {&rec.frequency_Hz, &rec.dynamic_modulus_kPa, &rec.phase_deg});
-    manifest["tests"].push_back({{"kind", "dynamic"}, {"name", p.name}, {"file", file},
-                                 {"preload_strain", p.preload_strain},
-                                 {"acceleration_amplitude_m_s2", p.acceleration_peak_to_peak_m_s2},
-                                 {"amplitude_convention", "peak_to_peak"}, {"preload_rate_mm_min", p.preload_rate_mm_min},
-                                 {"dwell_before_sweep_s", p.dwell_s}, {"cycles", p.cycles}, {"fit_cycles", p.fit_cycles},
-                                 {"preflex_cycles", 0}, {"lift_off", false}, {"use", p.use}});
+    nlohmann::json test{{"kind", "dynamic"}, {"name", p.name}, {"file", file}, {"preload_strain", p.preload_strain},
+                        {"acceleration_amplitude_m_s2", p.acceleration_peak_to_peak_m_s2}, {"preflex_cycles", 0},
+                        {"lift_off", false}, {"use", p.use}};
+    if (plan.unrecorded_protocol) {
+      if (plan.amplitude_written_as_peak) test["acceleration_amplitude_m_s2"] = 0.5 * p.acceleration_peak_to_peak_m_s2;
+    } else {
+      test.update({{"amplitude_convention", "peak_to_peak"}, {"preload_rate_mm_min", p.preload_rate_mm_min},
+                   {"dwell_before_sweep_s", p.dwell_s}, {"cycles", p.cycles}, {"fit_cycles", p.fit_cycles}});
+    }
+    manifest["tests"].push_back(test);
   }
   write_json(dir / "campaign.json", manifest);
 
@@ -250,6 +271,13 @@ void write_campaign(const CampaignTruth& truth, const TestPlan& plan, const fs::
     for (const auto& [key, value] : e.parameters) p[key] = value;
     p["effect_over_noise"] = truth.effect_over_noise.at(e.family);
     t["parameters"][e.family] = p;
+  }
+  if (plan.unrecorded_protocol && !plan.dynamic.empty()) {
+    const DynamicProtocol& d = plan.dynamic.front();
+    t["protocol"] = {{"recorded", false}, {"cycles", d.cycles}, {"fit_cycles", d.fit_cycles},
+                     {"preload_rate_mm_min", d.preload_rate_mm_min}, {"dwell_before_sweep_s", d.dwell_s},
+                     {"amplitude_convention", plan.amplitude_written_as_peak ? "peak" : "peak_to_peak"},
+                     {"acceleration_peak_to_peak_m_s2", d.acceleration_peak_to_peak_m_s2}};
   }
   t["base"] = base_json(truth.base);
   t["seed"] = truth.seed;
@@ -302,8 +330,10 @@ void write_campaign_set(const fs::path& dir, int count, int pairs, int controls,
     const auto t0 = std::chrono::steady_clock::now();
     std::ostringstream name;
     name << "c" << std::setw(3) << std::setfill('0') << i;
-    const CampaignTruth truth = draw_truth(name.str(), kinds[i], mix_seed(seed, i), plan);
-    write_campaign(truth, plan, dir / name.str());
+    Random protocol_random(mix_seed(mix_seed(seed, i), 4242));
+    const TestPlan campaign_plan = plan.unrecorded_protocol ? drawn_protocol(plan, protocol_random) : plan;
+    const CampaignTruth truth = draw_truth(name.str(), kinds[i], mix_seed(seed, i), campaign_plan);
+    write_campaign(truth, campaign_plan, dir / name.str());
     const std::string families = kinds[i].families.empty() ? "control" : join(kinds[i].families, "+");
     const std::string forms = kinds[i].forms.empty() ? "-" : join(kinds[i].forms, "+");
     index << name.str() << "," << families << "," << forms << "\n";

@@ -10,7 +10,8 @@
 /// qs_120 and dyn_25; the rest "validation". The manifest records the protocol as simulated (campaign
 /// protocol keys): no preflex; quasi-static "lift_off": true (the record ends at lift-off); dynamic
 /// "lift_off": false (displacement-driven), dwell_before_sweep_s, cycles, fit_cycles, amplitude_convention,
-/// preload_rate_mm_min.
+/// preload_rate_mm_min. With --unrecorded-protocol (TestPlan::unrecorded_protocol) each campaign runs a drawn
+/// dynamic protocol whose keys the manifest leaves out (truth.json "protocol" says what ran).
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -28,9 +29,22 @@ struct TestPlan {
   NoiseModel noise;
   std::vector<QuasiStaticProtocol> quasi_static;
   std::vector<DynamicProtocol> dynamic;
+  /// The manifest leaves out the dynamic protocol keys (cycles, fit_cycles, preload_rate_mm_min,
+  /// dwell_before_sweep_s, amplitude_convention) and each campaign runs its own (drawn_protocol); truth.json
+  /// records what was run. false: the standard protocol, every key recorded.
+  bool unrecorded_protocol = false;
+  /// With unrecorded_protocol: the written acceleration_amplitude_m_s2 is the PEAK amplitude (half the
+  /// peak-to-peak one the machine ran), as a lab that says "amplitude" for the peak writes it. Per campaign.
+  bool amplitude_written_as_peak = false;
 };
 
 TestPlan standard_plan();
+
+/// A campaign's own dynamic protocol (the same for its dynamic tests), as labs differ: cycles per frequency
+/// 5, 10, 20 or 50 with the last half fitted; preload ramp log-uniform 10..100 mm/min; dwell before the sweep
+/// 0 (a third of the draws) or log-uniform 10..300 s; amplitude written as peak (half the draws) or peak-to-peak.
+/// The plan's unrecorded_protocol is set.
+TestPlan drawn_protocol(const TestPlan& plan, Random& random);
 
 /// The effect's contribution per test over the noise level, from noise-free runs of the plan with and
 /// without `effects` (same base): quasi-static RMS(dF)/RMS(force sd) over the samples both records have;

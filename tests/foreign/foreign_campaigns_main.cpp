@@ -1,4 +1,5 @@
 // foreign_campaigns --out DIR --count N --seed S [--pairs P] [--controls C] [--dynamic-noise amplitude|reading]
+//                   [--protocol recorded|unrecorded]
 // Test-data generation for the diagnose benchmark (issue 15), independent of cushion's material/ and
 // calibration/: writes N seeded campaigns DIR/c000 ... in cushion's campaign format, each with truth.json,
 // and DIR/index.csv. Defaults: P = C = round(N/6). Deterministic for a seed.
@@ -15,17 +16,18 @@ namespace {
 int usage(const std::string& message) {
   std::cerr << (message.empty() ? "" : "foreign_campaigns: " + message + "\n")
             << "usage: foreign_campaigns --out DIR --count N --seed S [--pairs P] [--controls C]\n"
-               "                         [--dynamic-noise amplitude|reading]\n"
+               "                         [--dynamic-noise amplitude|reading] [--protocol recorded|unrecorded]\n"
                "  N campaigns DIR/c000... (P with two effect families, C controls without effect, the rest one\n"
                "  family each, balanced over families and forms), each campaign.json + CSV + truth.json, and\n"
-               "  DIR/index.csv. Defaults: P = C = round(N/6); dynamic noise relative to the oscillating force.\n";
+               "  DIR/index.csv. Defaults: P = C = round(N/6); dynamic noise relative to the oscillating force;\n"
+               "  protocol recorded (unrecorded: each campaign runs its own dynamic protocol, keys left out).\n";
   return message.empty() ? 0 : 2;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string out, dynamic_noise = "amplitude";
+  std::string out, dynamic_noise = "amplitude", protocol = "recorded";
   long count = -1, pairs = -1, controls = -1;
   long long seed = -1;
   try {
@@ -40,6 +42,7 @@ int main(int argc, char** argv) {
       else if (a == "--pairs") pairs = std::stol(v);
       else if (a == "--controls") controls = std::stol(v);
       else if (a == "--dynamic-noise") dynamic_noise = v;
+      else if (a == "--protocol") protocol = v;
       else return usage("unknown option " + a);
     }
   } catch (const std::exception&) {
@@ -47,11 +50,13 @@ int main(int argc, char** argv) {
   }
   if (out.empty() || count < 1 || seed < 0) return usage("--out, --count >= 1 and --seed >= 0 are required");
   if (dynamic_noise != "amplitude" && dynamic_noise != "reading") return usage("--dynamic-noise: amplitude or reading");
+  if (protocol != "recorded" && protocol != "unrecorded") return usage("--protocol: recorded or unrecorded");
   if (pairs < 0) pairs = std::lround(count / 6.0);
   if (controls < 0) controls = std::lround(count / 6.0);
   try {
     foreign_bench::TestPlan plan = foreign_bench::standard_plan();
     plan.noise.dynamic_relative_to_reading = dynamic_noise == "reading";
+    plan.unrecorded_protocol = protocol == "unrecorded";
     foreign_bench::write_campaign_set(out, static_cast<int>(count), static_cast<int>(pairs), static_cast<int>(controls),
                                       static_cast<std::uint64_t>(seed), plan, std::cout);
   } catch (const std::exception& e) {

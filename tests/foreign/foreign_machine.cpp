@@ -140,7 +140,7 @@ DynamicRecord run_dynamic(const BaseFoam& foam, const std::vector<EffectSpec>& e
   const int ramp_steps = substeps_for(preload_mm);
   const double ramp_dt = preload_mm / (p.preload_rate_mm_min / 60.0) / ramp_steps;
   for (int k = 1; k <= ramp_steps; ++k) foam_specimen.step(preload_mm * k / ramp_steps / H, ramp_dt);
-  const int dwell_steps = std::max(1, static_cast<int>(std::ceil(p.dwell_s / 0.05)));
+  const int dwell_steps = static_cast<int>(std::ceil(p.dwell_s / 0.05));  // none without a dwell
   for (int k = 0; k < dwell_steps; ++k) foam_specimen.step(p.preload_strain, p.dwell_s / dwell_steps);
 
   DynamicRecord rec;

@@ -163,3 +163,52 @@ TEST(CliDiagnose, BaselineFiguresEqualCompareFigures) {
   EXPECT_NE(bad.output.find("--max-iterations"), std::string::npos) << bad.output;
   EXPECT_FALSE(fs::exists(dir / "bad"));
 }
+
+// A campaign that does not record how its dynamic tests were run (the virtual lab ran 8 cycles a frequency, the last
+// 4 fitted; the manifest leaves out cycles, fit_cycles, the convention, the preload ramp and the dwell): diagnose
+// searches them as nuisance parameters with the true material, reports the chi2 of every value tried (of the cycle
+// counts searched, 10 with the last 5 fitted, the nearest to what ran, fits best) and says what it assumed, in the
+// verdict when it keeps the values found, in a warning when a refitted base explains the data as well under the
+// defaults. --assume-protocol models the defaults without a search.
+TEST(CliDiagnose, UnrecordedProtocolIsSearchedAndReported) {
+  const fs::path dir = scratch() / "protocol";
+  fs::create_directories(dir);
+  std::ifstream in(hidden() / "campaign_friction" / "campaign.json");
+  nlohmann::json campaign = nlohmann::json::parse(in);
+  for (auto& t : campaign["tests"]) {
+    fs::copy_file(hidden() / "campaign_friction" / t["file"].get<std::string>(), dir / t["file"].get<std::string>(),
+                  fs::copy_options::overwrite_existing);
+    if (t["kind"] == "dynamic")
+      for (const char* k : {"amplitude_convention", "preload_rate_mm_min", "dwell_before_sweep_s", "cycles", "fit_cycles"})
+        t.erase(k);
+  }
+  std::ofstream(dir / "campaign.json") << campaign.dump(1);
+  const std::string files = quoted(hidden() / "truth_material_friction.json") + " " + quoted(dir / "campaign.json");
+  const std::string options = " --candidates friction --max-iterations 2";
+  const CommandRun r = run_cushion("diagnose " + files + " -o " + quoted(dir / "searched") + options);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream ri(dir / "searched" / "report.json");
+  const nlohmann::json j = nlohmann::json::parse(ri);
+  ASSERT_TRUE(j.contains("protocol")) << r.output;
+  const nlohmann::json& keys = j["protocol"]["keys"];
+  ASSERT_EQ(keys.size(), 4u);
+  for (const auto& k : keys) {
+    EXPECT_EQ(k["tests"].size(), 2u);
+    for (const auto& v : k["tried"]) EXPECT_TRUE(v["chi2"].is_number()) << k["key"] << " " << v["value"];
+    if (k["key"] != "cycles") continue;
+    std::string best;
+    double lowest = 1e300;
+    for (const auto& v : k["tried"])
+      if (v["chi2"].get<double>() < lowest) lowest = v["chi2"].get<double>(), best = v["value"].get<std::string>();
+    EXPECT_EQ(best, "10 (last 5 fitted)") << k.dump();
+  }
+  const std::string verdict = j["verdict"].get<std::string>(), warnings = j["warnings"].dump();
+  EXPECT_TRUE(verdict.find("Protocol: the campaign does not record") != std::string::npos ||
+              warnings.find("the defaults are kept") != std::string::npos) << verdict << "\n" << warnings;
+  EXPECT_NE(read_text(dir / "searched" / "diagnosis.md").find("## Protocol assumptions"), std::string::npos);
+
+  const CommandRun a = run_cushion("diagnose " + files + " -o " + quoted(dir / "assumed") + " --assume-protocol" + options);
+  ASSERT_EQ(a.exit_code, 0) << a.output;
+  std::ifstream ai(dir / "assumed" / "report.json");
+  EXPECT_FALSE(nlohmann::json::parse(ai).contains("protocol"));
+}
