@@ -1,5 +1,6 @@
 #pragma once
-/// Protocol details a campaign does not record, as nuisance parameters of `diagnose` (issue 15, part 2).
+/// Protocol details a campaign does not record, as nuisance parameters of `diagnose` (issue 15, part 2; why they
+/// matter and how the values are chosen: docs/physics.md 9.3).
 ///
 /// A dynamic test that leaves out a protocol key is modelled with the key's default (campaign.hpp): 20 cycles a
 /// frequency with the last 10 fitted, a 30 mm/min preload ramp, no dwell before the sweep, the acceleration read as
