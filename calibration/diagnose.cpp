@@ -64,16 +64,17 @@ class CandidateModel {
       for (const auto& p : info->parameters) {
         if (!p.fit) continue;
         FreeParameter f{e, FreeParameter::npos, FreeParameter::npos, FreeParameter::npos, &p};
+        const double start = p.fit_start > 0.0 ? p.fit_start : p.default_value;
         if (p.log_scale) {
-          const double lo = std::max(p.min_exclusive ? p.min * (1 + 1e-12) + 1e-300 : p.min, p.default_value * 1e-4);
+          const double lo = std::max(p.min_exclusive ? p.min * (1 + 1e-12) + 1e-300 : p.min, start * 1e-4);
           f.lower = std::log10(std::max(lo, 1e-300));
-          f.upper = std::log10(std::min(p.max, p.default_value * 1e4));
+          f.upper = std::log10(std::min(p.max, start * 1e4));
         } else {
           f.lower = (p.min_exclusive ? p.min + 1e-12 * std::max(1.0, std::abs(p.min)) : p.min) / f.scale();
           f.upper = p.max / f.scale();
         }
         free_.push_back(f);
-        if (!effects_[e].parameters.count(p.name)) effects_[e].parameters[p.name] = p.default_value;
+        if (!effects_[e].parameters.count(p.name)) effects_[e].parameters[p.name] = start;
       }
     }
   }

@@ -45,13 +45,19 @@ const std::vector<Entry>& entries() {
          {"permeability_mm2", "K0: permeability at J = 1 (1e-3 mm^2 = 1e-9 m^2)", 1e-3, 1e-9, 1e3, false, true, true},
          {"permeability_exponent", "n_K: K = K0 J^n_K, permeability falls with compression", 2.0, 0.0, 20.0, false,
           true, false},
-         {"air_viscosity_Pa_s", "eta_air: dynamic viscosity of air", 1.8e-5, 0.0, 1.0, true, false, false}}},
+         {"air_viscosity_Pa_s", "eta_air: dynamic viscosity of air", 1.8e-5, 0.0, 1.0, true, false, false},
+         {"air_modulus_kPa",
+          "M: stiffness of the air trapped in the cells (isothermal air at 1 atm: about 100 kPa), in series with the "
+          "flow: a Maxwell branch of time eta R^2/(8 K M); 0: no trapped-air spring (Darcy dashpot)",
+          0.0, 0.0, 1e9, false, true, true, 100.0}}},
        [](const BuildContext& c) -> std::shared_ptr<const Material> {
          PneumaticParameters p;
          p.drainage_length = c.value.at("drainage_length_mm");
          p.permeability = c.value.at("permeability_mm2");
          p.permeability_exponent = c.value.at("permeability_exponent");
          p.air_viscosity = c.value.at("air_viscosity_Pa_s") * Pa;
+         const double M = c.value.at("air_modulus_kPa");
+         if (M > 0.0) p.air_modulus = M * kPa;
          return std::make_shared<PneumaticEffect>(c.inner, p);
        }},
       {{"friction",

@@ -39,6 +39,10 @@ struct EffectParameterInfo {
   bool min_exclusive = false;///< true: value > min; false: value >= min (max is always inclusive)
   bool fit = true;           ///< refitted by diagnose by default (false: case or physical constant)
   bool log_scale = false;    ///< positive and spanning decades: fit its logarithm
+  /// Where diagnose's fit starts and centres its search range when not the default (0: the default). For a
+  /// parameter whose default switches a branch off (air_modulus_kPa 0: no trapped-air spring), so that the
+  /// fit starts where the parameter matters.
+  double fit_start = 0;
 };
 
 /// One effect of the catalogue.

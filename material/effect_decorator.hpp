@@ -37,7 +37,7 @@ class EffectDecorator : public Material {
   void initial_state(std::span<double> state) const override;
   /// The inner model's viscous stress [MPa] on the inner part of the state; effects that rescale
   /// the inner stress (Mullins, strain-dependent Prony) scale it alike. Rate terms computed from
-  /// F_old (stiffness damping, pneumatic) are not in the state and not included.
+  /// F_old (stiffness damping, the pneumatic dashpot) and the pneumatic air pressure are not included.
   Vec6 viscous_stress(const Mat3& F, std::span<const double> state) const override;
 
   const Material& inner() const { return *inner_; }

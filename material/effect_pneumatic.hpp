@@ -12,11 +12,21 @@
 /// Compression (dJ/dt < 0) gives p_air > 0, a compressive extra stress. Time scale of the effect
 /// tau_air ~ eta R^2 / (8 K M) (M: drained modulus): it grows as K falls and with R^2.
 ///
+/// Trapped air (optional, air_modulus M finite): the air in the cells is itself a spring of stiffness M (isothermal air
+/// at 1 atm: M ~ p_atm = 101 kPa) in series with the Darcy flow, a MAXWELL branch
+///   dp/dt + p / tau(J) = -M (dJ/dt)/J,   tau(J) = c(J)/M,   c(J) = eta R^2/(8 K(J)),
+/// integrated by backward Euler with p the own state:  p = [p_old - M (J - J_old)/J] / (1 + dt M / c(J)).
+/// M -> infinity gives back the dashpot p = -c(J) (dJ/dt)/J (the default: air_modulus infinite); with M finite the
+/// air raises the storage modulus at frequencies above 1/(2 pi tau) and relaxes under a hold, and tau depends on the
+/// compression through K(J) (docs/physics.md 5.1).
 /// It is NOT a poroelastic (Biot) FE model: the pore pressure is not a field and does not diffuse
 /// between elements; R is a user/case parameter (half the specimen width or drainage path), which
 /// makes the model SIZE-DEPENDENT: a Prony series fitted on a small block misses it on a large one.
-/// No own state (uses F_old). Frequency domain about a relaxed base F_b (p_air = 0 there):
-///   dS* = i omega (eta R^2 / (8 K(J_b))) C_b^{-1} (x) C_b^{-1} : dE*   added to the inner tangent.
+/// Own state: the air pressure p [MPa] (one double). dt = 0 (an instantaneous response) adds no air stress and keeps p.
+/// Frequency domain about a relaxed base F_b (p_air = 0 there):
+///   dS* = (i omega c(J_b) / (1 + i omega tau(J_b))) C_b^{-1} (x) C_b^{-1} : dE*   added to the inner tangent.
+#include <limits>
+
 #include "material/effect_decorator.hpp"
 
 namespace cushion::material {
@@ -27,6 +37,7 @@ struct PneumaticParameters {
   double permeability = 1e-3;        ///< K0 [mm^2] at J = 1, > 0 (1e-3 mm^2 = 1e-9 m^2)
   double permeability_exponent = 2;  ///< n_K [-], >= 0: K = K0 J^{n_K}
   double air_viscosity = 1.8e-11;    ///< eta_air [MPa s] (1.8e-5 Pa s), > 0
+  double air_modulus = std::numeric_limits<double>::infinity();  ///< M [MPa], > 0; infinite: Darcy dashpot
 };
 
 class PneumaticEffect final : public EffectDecorator {
@@ -41,6 +52,8 @@ class PneumaticEffect final : public EffectDecorator {
 
   /// Damping coefficient eta R^2 / (8 K(J)) [MPa s] at volume ratio J.
   double coefficient(double J) const;
+  /// Relaxation time c(J)/M [s] of the trapped air at volume ratio J (0 for the dashpot, M infinite).
+  double relaxation_time(double J) const;
   const PneumaticParameters& parameters() const { return p_; }
 
  private:

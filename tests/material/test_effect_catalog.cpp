@@ -45,8 +45,12 @@ TEST(EffectCatalog, EveryEntryIsSelfDescribing) {
     for (const EffectParameterInfo& p : e.parameters) {
       EXPECT_TRUE(p.min_exclusive ? p.default_value > p.min : p.default_value >= p.min) << p.name;
       EXPECT_LE(p.default_value, p.max) << p.name;
-      if (p.log_scale) {
-        EXPECT_TRUE(p.min > 0.0 || p.min_exclusive) << p.name;
+      if (p.log_scale) {  // positive, or 0 switches a branch off and the fit starts at a positive fit_start
+        EXPECT_TRUE(p.min > 0.0 || p.min_exclusive || p.fit_start > 0.0) << p.name;
+      }
+      if (p.fit_start > 0.0) {
+        EXPECT_GT(p.fit_start, p.min) << p.name;
+        EXPECT_LE(p.fit_start, p.max) << p.name;
       }
       EXPECT_FALSE(p.description.empty()) << p.name;
     }
@@ -76,13 +80,13 @@ TEST(EffectCatalog, DefaultsBuildOnEveryBase) {
 }
 
 TEST(EffectCatalog, FullStackHasConsistentStateAndTangent) {
-  // All five effects on the Table 3 model: state = visco (36) + friction (6) + mullins (1); the
+  // All five effects on the Table 3 model: state = visco (36) + friction (6) + mullins (1) + pneumatic (1); the
   // increment tangent of the whole stack matches finite differences (1e-6 relative) at a random F
   // with a non-trivial state.
   const auto foam = test::effect_test_foam();
   const auto visco = test::effect_test_visco();
   const auto m = apply_effects(visco, foam, all_effects());
-  EXPECT_EQ(m->state_size(), visco->state_size() + 6 + 1);
+  EXPECT_EQ(m->state_size(), visco->state_size() + 6 + 1 + 1);
   std::mt19937 rng(8);
   std::vector<double> state(m->state_size()), next(m->state_size());
   m->initial_state(state);
