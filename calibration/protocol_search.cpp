@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -143,16 +144,21 @@ ProtocolSearch search_protocol(const material::Material& model, const Campaign& 
   const std::size_t nq = campaign.quasi_static.size();
   const std::vector<TestNoise> dynamic_noise(noise.begin() + std::ptrdiff_t(nq),
                                              noise.begin() + std::ptrdiff_t(nq + campaign.dynamic.size()));
-  std::map<std::vector<std::size_t>, double> cache;
-  auto chi2_at = [&](const std::vector<std::size_t>& choice) {
-    if (auto it = cache.find(choice); it != cache.end()) return it->second;
+  // chi2 of the dynamic tests with the keys at `choice`; none when a value does not apply to some test. The model is
+  // const: runs on two threads share it.
+  auto run = [&](const std::vector<std::size_t>& choice) -> std::optional<double> {
     Campaign c = dynamic_only;
-    double chi2 = std::numeric_limits<double>::quiet_NaN();
-    if (apply_choice(c.dynamic, keys, choice)) {
-      ++out.runs;
-      chi2 = chi2_of(compare_campaign(model, c, options, dynamic_noise));
-    }
-    return cache[choice] = chi2;
+    if (!apply_choice(c.dynamic, keys, choice)) return std::nullopt;
+    return chi2_of(compare_campaign(model, c, options, dynamic_noise));
+  };
+  std::map<std::vector<std::size_t>, double> cache;  // NaN: not applicable or a run failed
+  auto remember = [&](const std::vector<std::size_t>& choice, const std::optional<double>& chi2) {
+    out.runs += chi2.has_value();
+    return cache[choice] = chi2.value_or(std::numeric_limits<double>::quiet_NaN());
+  };
+  auto chi2_at = [&](const std::vector<std::size_t>& choice) {
+    const auto it = cache.find(choice);
+    return it != cache.end() ? it->second : remember(choice, run(choice));
   };
 
   // chi2 with key k at each of its values, the others as in `choice`.
@@ -177,16 +183,10 @@ ProtocolSearch search_protocol(const material::Material& model, const Campaign& 
     for (std::size_t v : keys[k].coarse) trial[k] = v, enumerate(k + 1);
   };
   enumerate(0);
-  std::vector<double> grid_chi2(combos.size(), std::numeric_limits<double>::quiet_NaN());
-  std::vector<int> applied(combos.size(), 0);
+  std::vector<std::optional<double>> grid(combos.size());
   std::atomic<std::size_t> next{0};
-  auto worker = [&] {  // the model is const: runs in parallel share it
-    for (std::size_t i = next++; i < combos.size(); i = next++) {
-      Campaign c = dynamic_only;
-      if (!apply_choice(c.dynamic, keys, combos[i])) continue;
-      applied[i] = 1;
-      grid_chi2[i] = chi2_of(compare_campaign(model, c, options, dynamic_noise));
-    }
+  auto worker = [&] {
+    for (std::size_t i = next++; i < combos.size(); i = next++) grid[i] = run(combos[i]);
   };
   std::thread second(worker);
   worker();
@@ -194,9 +194,8 @@ ProtocolSearch search_protocol(const material::Material& model, const Campaign& 
   std::vector<std::size_t> best = choice;
   double best_chi2 = out.chi2_assumed;
   for (std::size_t i = 0; i < combos.size(); ++i) {
-    out.runs += applied[i];
-    cache[combos[i]] = grid_chi2[i];
-    if (std::isfinite(grid_chi2[i]) && !(grid_chi2[i] >= best_chi2)) best = combos[i], best_chi2 = grid_chi2[i];
+    const double chi2 = remember(combos[i], grid[i]);
+    if (std::isfinite(chi2) && !(chi2 >= best_chi2)) best = combos[i], best_chi2 = chi2;
   }
   // 2. Each key over its finer values from the grid's best, the others held, until none moves.
   for (int sweep = 0; sweep < 3; ++sweep) {
