@@ -434,23 +434,25 @@ void compare_baseline(const material::Material& model, const Campaign& campaign,
 /// (the reference fit, without effect) under each: a base that is off can make another protocol look better, and
 /// the base refit is what an effect must beat. Measured on the foreign 4-term base mismatch (baseline 30x noise):
 /// the search with the baseline picked a 10 mm/min ramp, 300 s dwell and peak amplitude (dynamic chi2 2.96e4 ->
-/// 1.87e4), which then let friction be named. Without a hyperfoam base to refit, the search's values stand.
-void confirm_protocol_with_base_refit(const material::MaterialSpec& baseline, const Campaign& campaign,
+/// 1.87e4), which then let friction be named. Without a hyperfoam base to refit, the search's values stand. The refit
+/// under the campaign kept becomes the reference of step 4 (d.base_refit; its dBIC is set once the baseline is
+/// compared), so it is not fitted twice.
+void confirm_protocol_with_base_refit(const material::MaterialSpec& baseline, const material::Material& model,
+                                      const Campaign& campaign, const std::vector<TestNoise>& noise,
                                       const DiagnoseOptions& options, ProtocolSearch& p, Diagnosis& d, std::ostream& log) {
   if (!options.joint_base || baseline.base != material::MaterialSpec::Base::hyperfoam || baseline.hyperfoam.empty()) return;
-  const std::vector<TestNoise> noise = estimate_noise(campaign);
-  const material::MaterialDefinition def = material::build_material(baseline, "baseline material");
-  const std::size_t n = normalised_residuals(compare_campaign(*def.model, campaign, options.compare, noise),
+  const std::size_t n = normalised_residuals(compare_campaign(model, campaign, options.compare, noise),
                                              options.quasi_static_points).size();
   const std::vector<std::function<CandidateFit()>> jobs{
       [&] { return fit_candidate(baseline, {}, campaign, noise, n, 0.0, options, true, true); },
       [&] { return fit_candidate(baseline, {}, p.campaign, noise, n, 0.0, options, true, true); }};
-  const std::vector<CandidateFit> refits = run_all(jobs, options.threads);
+  std::vector<CandidateFit> refits = run_all(jobs, options.threads);
   const double assumed = refits[0].converged ? refits[0].chi2 : std::numeric_limits<double>::infinity();
   const double found = refits[1].converged ? refits[1].chi2 : std::numeric_limits<double>::infinity();
   const bool kept = found < assumed - options.strong_evidence;
   log << "diagnose: protocol values found, checked with the base refitted under each: chi2 " << fmt(assumed, 4)
       << " with the defaults, " << fmt(found, 4) << " with the values found: " << (kept ? "kept" : "defaults kept") << "\n";
+  d.base_refit = std::move(refits[kept ? 1 : 0]);
   if (kept) return;
   std::string found_values;
   for (auto& k : p.keys) {
@@ -470,10 +472,11 @@ const Campaign& search_unrecorded_protocol(const material::MaterialSpec& baselin
                                            const Campaign& campaign, const DiagnoseOptions& options, Diagnosis& d,
                                            std::ostream& log) {
   if (!options.search_protocol) return campaign;
-  d.protocol = search_protocol(model, campaign, estimate_noise(campaign), options.compare, options.strong_evidence);
+  const std::vector<TestNoise> noise = estimate_noise(campaign);
+  d.protocol = search_protocol(model, campaign, noise, options.compare, options.strong_evidence);
   ProtocolSearch& p = *d.protocol;
   if (p.keys.empty()) return campaign;
-  if (p.changed()) confirm_protocol_with_base_refit(baseline, campaign, options, p, d, log);
+  if (p.changed()) confirm_protocol_with_base_refit(baseline, model, campaign, noise, options, p, d, log);
   log << "diagnose: protocol keys not recorded, searched (" << p.runs << " runs, " << fmt(p.seconds, 2) << " s):";
   for (const auto& k : p.keys) log << " " << k.key << " " << k.chosen << (k.chosen == k.assumed ? " (default)" : "");
   log << "; dynamic chi2 " << fmt(p.chi2_assumed, 4) << " -> " << fmt(p.chi2_chosen, 4) << "\n";
@@ -495,7 +498,7 @@ std::string protocol_sentence(const Diagnosis& d) {
   bool first = true;
   for (const auto& k : d.protocol->keys)
     if (k.chosen != k.assumed) o << (first ? " " : "; ") << k.key << ": " << k.chosen << " (default " << k.assumed << ")", first = false;
-  o << " fit" << " the dynamic tests better (chi2 " << fmt(d.protocol->chi2_assumed, 4) << " -> "
+  o << " fit the dynamic tests better (chi2 " << fmt(d.protocol->chi2_assumed, 4) << " -> "
     << fmt(d.protocol->chi2_chosen, 4) << ") and are assumed throughout; record them in the campaign to be sure.";
   return o.str();
 }
@@ -591,8 +594,8 @@ std::vector<CandidateFit> fit_singles_and_reference(const CandidateJobs& c,
                                                     Diagnosis& d, std::ostream& log) {
   const bool joint = c.options.joint_base && c.base_ref();
   std::vector<std::function<CandidateFit()>> jobs;
-  if (joint) {  // the reference first: the joint candidates start from it
-    d.base_refit = c.job({}, true, true)();
+  if (joint) {  // the reference first: the joint candidates start from it (step 0 may have fitted it already)
+    if (!d.base_refit) d.base_refit = c.job({}, true, true)();
     log_fit(log, *d.base_refit, false);
   }
   for (const auto& s : singles) jobs.push_back(c.job(s, true, joint));
@@ -898,6 +901,7 @@ Diagnosis diagnose(const material::MaterialSpec& baseline, const Campaign& campa
   d.warnings = campaign_warnings(campaign);
   const Campaign& diagnosed = search_unrecorded_protocol(baseline, *def.model, campaign, options, d, log);
   compare_baseline(*def.model, diagnosed, options, d, log);
+  if (d.base_refit && std::isfinite(d.base_refit->bic)) d.base_refit->delta_bic = d.baseline_bic - d.base_refit->bic;
   if (!verdict_without_candidates(options, d)) {
     const CandidateJobs jobs{baseline, diagnosed, options, d};
     std::vector<CandidateFit> singles =

@@ -49,6 +49,10 @@ KeyDefinition numeric_key(const std::string& key, std::vector<double> values, st
   return k;
 }
 
+bool leaves_out(const DynamicTest& t, const std::string& key) {
+  return std::find(t.unrecorded.begin(), t.unrecorded.end(), key) != t.unrecorded.end();
+}
+
 std::vector<KeyDefinition> key_definitions(const CompareOptions& options) {
   std::vector<KeyDefinition> keys;
   {
@@ -57,7 +61,7 @@ std::vector<KeyDefinition> key_definitions(const CompareOptions& options) {
     for (int c : cycles) k.labels.push_back(std::to_string(c) + " (last " + std::to_string(std::max(1, c / 2)) + " fitted)");
     k.apply = [](DynamicTest& t, std::size_t i) {
       const int c = cycles[i];
-      const bool fit_cycles_recorded = std::find(t.unrecorded.begin(), t.unrecorded.end(), "fit_cycles") == t.unrecorded.end();
+      const bool fit_cycles_recorded = !leaves_out(t, "fit_cycles");
       if (fit_cycles_recorded && t.fit_cycles > c) return false;
       t.cycles = c;
       if (!fit_cycles_recorded) t.fit_cycles = std::max(1, c / 2);
@@ -74,10 +78,6 @@ std::vector<KeyDefinition> key_definitions(const CompareOptions& options) {
                     return true;
                   }});
   return keys;
-}
-
-bool leaves_out(const DynamicTest& t, const std::string& key) {
-  return std::find(t.unrecorded.begin(), t.unrecorded.end(), key) != t.unrecorded.end();
 }
 
 /// The campaign's dynamic tests with the keys at `choice` (where a test leaves them out); false when a value does

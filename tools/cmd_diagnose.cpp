@@ -40,26 +40,22 @@ std::string fit_base(const cushion::calibration::Campaign& campaign, const std::
 }
 
 /// From raw data: the base was fitted with the campaign's protocol defaults. The unrecorded protocol keys are searched
-/// with that base (protocol_search.hpp); when other values fit better the base is fitted again with them (into OUT/fit,
-/// replacing the fit before) and `campaign` takes them, and so on while the values move (the slow Prony terms of a base
-/// fitted under one protocol trade against the dwell and cycles of another), at most `max_refits` times; diagnose
-/// then searches once more about the values kept. One refit: a second one (measured 2026-11-25 on the one foreign
-/// control of ten that stays at 2.3x noise) moved nothing that mattered and took 13 s more.
+/// with that base (protocol_search.hpp); when other values fit better the base is fitted once more with them (into
+/// OUT/fit, replacing the first fit) and `campaign` takes them; diagnose then searches again about them. Once: a second
+/// fit/search round (measured 2026-11-25 on the one foreign control of ten that stays at 2.3x noise; the slow Prony
+/// terms of a base fitted under one protocol trade against the dwell and cycles of another) moved nothing that
+/// mattered and took 13 s more.
 void fit_base_and_protocol(cushion::calibration::Campaign& campaign, const std::filesystem::path& out,
                            const cushion::calibration::DiagnoseOptions& o, cushion::material::MaterialDefinition& def) {
   using namespace cushion::calibration;
-  constexpr int max_refits = 1;
-  const std::vector<TestNoise> noise = estimate_noise(campaign);
-  for (int refit = 0; refit < max_refits; ++refit) {
-    const ProtocolSearch p = search_protocol(*def.model, campaign, noise, o.compare, o.strong_evidence);
-    if (!p.moved) return;
-    std::cout << "diagnose: the campaign does not record";
-    for (const auto& k : p.keys) std::cout << " " << k.key << " (" << k.chosen << (k.chosen == k.assumed ? ", the default)" : ")");
-    std::cout << ": these values fit the dynamic tests better with this base (chi2 " << p.chi2_assumed << " -> "
-              << p.chi2_chosen << "); fitting the base again with them\n";
-    campaign = p.campaign;
-    def = cushion::material::read_material_file(fit_base(campaign, out));
-  }
+  const ProtocolSearch p = search_protocol(*def.model, campaign, estimate_noise(campaign), o.compare, o.strong_evidence);
+  if (!p.moved) return;
+  std::cout << "diagnose: the campaign does not record";
+  for (const auto& k : p.keys) std::cout << " " << k.key << " (" << k.chosen << (k.chosen == k.assumed ? ", the default)" : ")");
+  std::cout << ": these values fit the dynamic tests better with this base (chi2 " << p.chi2_assumed << " -> "
+            << p.chi2_chosen << "); fitting the base again with them\n";
+  campaign = p.campaign;
+  def = cushion::material::read_material_file(fit_base(campaign, out));
 }
 
 struct DiagnoseCli {
