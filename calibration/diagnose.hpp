@@ -36,6 +36,8 @@
 ///     of the dynamic modulus), and the material-file fragment that adds it.
 ///  6. Out of sample (HeldOutCheck, options.held_out): a supported candidate is named only when it also predicts
 ///     tests left out of its fit better than the base refit does; the best supported one that passes wins.
+///  7. Equal explanations (Rival): when a candidate of other families comes within strong_evidence of the winner,
+///     the verdict says the campaign cannot tell them apart and names the test that would (separating_test.hpp).
 #include <optional>
 #include <ostream>
 #include <string>
@@ -45,6 +47,7 @@
 
 #include "calibration/compare.hpp"
 #include "calibration/protocol_search.hpp"
+#include "calibration/separating_test.hpp"
 #include "material/io/material_file.hpp"
 
 namespace cushion::calibration {
@@ -126,6 +129,15 @@ struct CandidateFit {
   std::string name() const;                ///< "kind" or "kind + kind"
 };
 
+/// A candidate of other families that explains the campaign about as well as the winner: its dBIC within
+/// strong_evidence of the winner's (a candidate whose families include all of the winner's is not a rival: it
+/// nests the winner). The tests that would tell the two fitted models apart (separating_test.hpp), best first.
+struct Rival {
+  std::string name;              ///< the rival candidate, "kind" or "kind + kind"
+  double delta_bic = 0.0;        ///< its dBIC [-]
+  std::vector<SeparatingTest> tests;
+};
+
 struct Diagnosis {
   std::optional<ProtocolSearch> protocol;  ///< step 0 (options.search_protocol); its campaign is the one diagnosed
   CompareResult baseline;
@@ -139,6 +151,7 @@ struct Diagnosis {
   std::optional<CandidateFit> base_refit;
   std::vector<HeldOutCheck> held_out;      ///< the supported candidates checked out of sample, in rank order
   std::optional<std::size_t> winner;       ///< index into candidates
+  std::optional<Rival> rival;              ///< a candidate as good as the winner, and how to separate them
   bool winner_at_noise_level = false;
   std::string verdict;                     ///< one paragraph a person acts on
   std::vector<std::string> evidence;       ///< data signatures in words

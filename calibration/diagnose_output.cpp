@@ -82,6 +82,33 @@ nlohmann::json protocol_json(const ProtocolSearch& p) {
           {"runs", p.runs}, {"seconds", p.seconds}};
 }
 
+std::string rival_markdown(const Rival& r, const std::string& winner) {
+  std::ostringstream o;
+  o << "\n## Equally explained: " << winner << " or " << r.name << "\n\n"
+    << "Tests this campaign does not have, run with both fitted models; separation = RMS difference of their predictions "
+       "in units of the campaign's noise for that kind of test; chi2 = n separation^2, what data made by one model would "
+       "add to the other's chi2 over the test's n residuals (above the evidence threshold 10: one such test tells them "
+       "apart).\n\n"
+    << "| test | separation | n | chi2 |\n|---|---|---|---|\n";
+  for (const auto& t : r.tests)
+    o << "| " << t.name << " | "
+      << (std::isfinite(t.separation) ? fmt(t.separation, 3) + " | " + std::to_string(t.residuals) + " | " + fmt(t.delta_chi2(), 3)
+                                      : "failed: " + t.failure + " | | ")
+      << " |\n";
+  return o.str();
+}
+
+nlohmann::json rival_json(const Rival& r) {
+  nlohmann::json tests = nlohmann::json::array();
+  for (const auto& t : r.tests)
+    tests.push_back({{"test", t.name},
+                     {"separation", std::isfinite(t.separation) ? nlohmann::json(t.separation) : nlohmann::json(nullptr)},
+                     {"residuals", t.residuals},
+                     {"delta_chi2", std::isfinite(t.separation) ? nlohmann::json(t.delta_chi2()) : nlohmann::json(nullptr)},
+                     {"failure", t.failure}});
+  return {{"name", r.name}, {"delta_bic", r.delta_bic}, {"separating_tests", tests}};
+}
+
 }  // namespace
 
 nlohmann::json diagnosis_json(const Diagnosis& d) {
@@ -97,6 +124,7 @@ nlohmann::json diagnosis_json(const Diagnosis& d) {
   if (d.protocol) j["protocol"] = protocol_json(*d.protocol);
   j["winner"] = d.winner ? nlohmann::json(d.candidates[*d.winner].name()) : nlohmann::json(nullptr);
   j["winner_at_noise_level"] = d.winner_at_noise_level;
+  j["rival"] = d.rival ? rival_json(*d.rival) : nlohmann::json(nullptr);
   j["fragment"] = d.fragment;
   if (d.base_refit)
     j["base_refit"] = {{"name", d.base_refit->name()}, {"parameters", d.base_refit->parameters},
@@ -165,6 +193,7 @@ std::string diagnosis_markdown(const Diagnosis& d) {
     o << "\n(per-test columns: RMS error / measurement noise; 1 = noise level)\n";
   }
   if (!d.held_out.empty()) o << held_out_markdown(d.held_out);
+  if (d.rival && d.winner) o << rival_markdown(*d.rival, d.candidates[*d.winner].name());
   if (d.winner) {
     const CandidateFit& w = d.candidates[*d.winner];
     o << "\n## Error per test and region with " << w.name() << "\n\n" << compare_table(w.compare);

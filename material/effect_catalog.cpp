@@ -97,12 +97,16 @@ const std::vector<Entry>& entries() {
                                                              c.value.at("coefficient_c"));
        }},
       {{"stiffness_damping",
-        "stiffness-proportional (Rayleigh beta) damping beta_s C0 dE/dt, C0 = initial elastic tangent",
-        {{"beta_s", "beta_s: damping time (the paper's Rayleigh beta = 1e-4 s)", 1e-4, 0.0, 1.0, false, true, false}},
+        "stiffness-proportional (Rayleigh beta) damping beta_s C_d dE/dt, C_d = (1 - w) C0 + w C_e: the initial "
+        "elastic tangent C0 (w = 0) or the current one C_e (w = 1)",
+        {{"beta_s", "beta_s: damping time (the paper's Rayleigh beta = 1e-4 s)", 1e-4, 0.0, 1.0, false, true, false},
+         {"current_tangent_share", "w: share of the current elastic tangent in the damping stiffness (0: initial)", 0.0,
+          0.0, 1.0, false, true, false, 0.5}},
         false,
         true},
        [](const BuildContext& c) -> std::shared_ptr<const Material> {
-         return std::make_shared<StiffnessDampingEffect>(c.inner, *c.reference_base, c.value.at("beta_s"));
+         return std::make_shared<StiffnessDampingEffect>(c.inner, c.reference_base, c.value.at("beta_s"),
+                                                         c.value.at("current_tangent_share"));
        }},
   };
   return table;

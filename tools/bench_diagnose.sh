@@ -5,7 +5,9 @@
 #   env: SEED (2025), PAIRS and CONTROLS (default round(N/6) each), JOBS (campaigns at a time, 2),
 #        THREADS (diagnose --threads per campaign, 1), DYNAMIC_NOISE (amplitude|reading, amplitude),
 #        PROTOCOL (recorded|unrecorded, default recorded; unrecorded: each campaign runs its own dynamic protocol and
-#        leaves its keys out of the manifest), DIAGNOSE_ARGS (more options of every diagnose call, e.g. --assume-protocol)
+#        leaves its keys out of the manifest), DIAGNOSE_ARGS (more options of every diagnose call, e.g. --assume-protocol),
+#        GENERATOR_ARGS (more options of the generator, e.g. "--extra-rate 3000": a test diagnose proposed to separate
+#        two explanations, added to every campaign with the truth unchanged)
 #
 # The campaigns come from build/tests/foreign_campaigns (tests/foreign: a 1D test machine with its own
 # foam and effect forms, independent of cushion's material/ and calibration/). Each is run through the
@@ -30,6 +32,7 @@ THREADS=${THREADS:-1}
 DYNAMIC_NOISE=${DYNAMIC_NOISE:-amplitude}
 PROTOCOL=${PROTOCOL:-recorded}
 DIAGNOSE_ARGS=${DIAGNOSE_ARGS:-}
+GENERATOR_ARGS=${GENERATOR_ARGS:-}
 (( JOBS >= 1 && JOBS <= 2 )) || { echo "JOBS must be 1 or 2 (2 cores)" >&2; exit 2; }
 
 nice -n 5 cmake --build build --target cushion foreign_campaigns -j2 >/dev/null
@@ -39,8 +42,9 @@ mkdir -p "$OUT"
 OUT=$(cd "$OUT" && pwd)
 rm -rf "$OUT/campaigns"
 echo "bench_diagnose: generating $N campaigns (seed $SEED, $PAIRS pairs, $CONTROLS controls) in $OUT/campaigns"
+# shellcheck disable=SC2086  # GENERATOR_ARGS: words
 "$GENERATOR" --out "$OUT/campaigns" --count "$N" --seed "$SEED" --pairs "$PAIRS" --controls "$CONTROLS" \
-  --dynamic-noise "$DYNAMIC_NOISE" --protocol "$PROTOCOL" > "$OUT/generator.log"
+  --dynamic-noise "$DYNAMIC_NOISE" --protocol "$PROTOCOL" $GENERATOR_ARGS > "$OUT/generator.log"
 
 # One campaign: `cushion diagnose CAMP/campaign.json` (no material: the base is fitted first into CAMP/diag/fit,
 # then every candidate jointly with it); CAMP/bench_status.txt holds "status fit_s diagnose_s" (fit_s is 0: the
@@ -73,22 +77,23 @@ def verdict_of(camp):
     status, fit_s, diag_s = open(os.path.join(camp, "bench_status.txt")).read().split()
     seconds = float(fit_s) + float(diag_s)
     if status == "fit_failed":
-        return ["fit-failed"], None, None, seconds
+        return ["fit-failed"], None, None, seconds, []
     report = os.path.join(camp, "diag", "report.json")
     if status != "ok" or not os.path.exists(report):
-        return ["diagnose-failed"], None, None, seconds
+        return ["diagnose-failed"], None, None, seconds, []
     r = json.load(open(report))
     worst = lambda c: max((t["error_over_noise"] for t in c["tests"] if t.get("error_over_noise") is not None), default=None)
     baseline = worst(r["baseline"])
     if r.get("winner"):
         named = [k.strip() for k in r["winner"].split("+")]
         after = worst(r["candidates"][0]["compare"]) if r["candidates"] and "compare" in r["candidates"][0] else None
-        return named, baseline, after, seconds
+        rival = [k.strip() for k in r["rival"]["name"].split("+")] if r.get("rival") else []
+        return named, baseline, after, seconds, rival
     if r.get("at_noise_level") or r["verdict"].startswith("No effect is missing"):
-        return ["none"], baseline, None, seconds
+        return ["none"], baseline, None, seconds, []
     if r["verdict"].startswith("Cannot diagnose"):
-        return ["diagnose-failed"], baseline, None, seconds
-    return ["base"], baseline, None, seconds
+        return ["diagnose-failed"], baseline, None, seconds, []
+    return ["base"], baseline, None, seconds, []
 
 rows = []
 for line in csv.DictReader(open(os.path.join(out, "campaigns", "index.csv"))):
@@ -96,7 +101,7 @@ for line in csv.DictReader(open(os.path.join(out, "campaigns", "index.csv"))):
     truth = json.load(open(os.path.join(camp, "truth.json")))
     true = truth["families"]
     label = "control" if not true else "+".join(true)
-    named, baseline, after, seconds = verdict_of(camp)
+    named, baseline, after, seconds, rival = verdict_of(camp)
     if not true:
         right = named == ["none"]
     elif len(true) == 1:
@@ -104,7 +109,7 @@ for line in csv.DictReader(open(os.path.join(out, "campaigns", "index.csv"))):
     else:
         right = sorted(named) == sorted(true)            # both families of a pair
     rows.append(dict(campaign=line["campaign"], truth=label, forms=line["forms"], base=truth["base"]["family"],
-                     verdict="+".join(named), right=right, baseline_error_over_noise=baseline,
+                     verdict="+".join(named), rival="+".join(rival) or "-", right=right, baseline_error_over_noise=baseline,
                      after_error_over_noise=after, seconds=seconds))
 
 def kind(label):
@@ -158,6 +163,13 @@ if effect_rows:
     p(f"effects the fitted base leaves beyond 1.5x noise (visible in these tests): {len(seen)}/{len(effect_rows)}, "
       f"right among them {sum(r['right'] for r in seen)}/{len(seen)}; absorbed by the fitted base (<= 1.5x): "
       f"{len(effect_rows) - len(seen)}, of them 'none' {sum(r['verdict'] == 'none' for r in effect_rows if r not in seen)}")
+# A verdict that names a winner may add that another candidate explains the data as well (diagnose's rival, with
+# the test that would separate them): the true family is then at least put before the user.
+singles = [r for r in rows if kind(r["truth"]) == "single"]
+if singles:
+    tied = [r for r in singles if r["rival"] != "-"]
+    p(f"singles whose verdict names an equal rival: {len(tied)}/{len(singles)}; true family first or the rival: "
+      f"{sum(r['right'] or r['truth'] in r['rival'].split('+') for r in singles)}/{len(singles)}")
 controls = [r for r in rows if r["truth"] == "control"]
 if controls:
     fp = sum(1 for r in controls if r["verdict"] not in ("none", "base", "fit-failed", "diagnose-failed"))
@@ -175,11 +187,11 @@ secs = [r["seconds"] for r in rows]
 p(f"time per campaign (fit + diagnose): mean {statistics.mean(secs):.1f} s, max {max(secs):.1f} s")
 p("")
 p("Per campaign:")
-p(f"{'campaign':9s} {'truth':40s} {'forms':34s} {'base':16s} {'verdict':36s} ok   err/noise before -> after   s")
+p(f"{'campaign':9s} {'truth':40s} {'forms':34s} {'base':16s} {'verdict':36s} ok   err/noise before -> after   s      rival")
 for r in rows:
     p(f"{r['campaign']:9s} {r['truth']:40s} {r['forms']:34s} {r['base']:16s} {r['verdict']:36s} "
       f"{'yes' if r['right'] else 'no ':3s}  {fmt(r['baseline_error_over_noise']):>8s} -> {fmt(r['after_error_over_noise']):8s} "
-      f"{r['seconds']:6.1f}")
+      f"{r['seconds']:6.1f}  {r['rival']}")
 text = "\n".join(lines) + "\n"
 open(os.path.join(out, "summary.txt"), "w").write(text)
 print(text, end="")

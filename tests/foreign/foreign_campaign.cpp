@@ -134,6 +134,26 @@ TestPlan standard_plan() {
   return plan;
 }
 
+QuasiStaticProtocol extra_rate(double rate_mm_min) {
+  QuasiStaticProtocol p;
+  std::ostringstream name;
+  name << "qs_" << rate_mm_min << "_extra";
+  p.name = name.str();
+  p.rate_mm_min = rate_mm_min;
+  p.sample_hz = std::max(10.0, rate_mm_min / 12.0);  // 0.2 mm a sample
+  p.use = "validation";
+  return p;
+}
+
+DynamicProtocol extra_preload(const TestPlan& plan, double preload_strain) {
+  if (plan.dynamic.empty()) throw std::invalid_argument("extra_preload: the plan has no dynamic test");
+  DynamicProtocol p = plan.dynamic.front();
+  p.name = "dyn_" + std::to_string(static_cast<int>(std::lround(preload_strain * 100))) + "_extra";
+  p.preload_strain = preload_strain;
+  p.use = "validation";
+  return p;
+}
+
 TestPlan drawn_protocol(const TestPlan& plan, Random& random) {
   TestPlan out = plan;
   out.unrecorded_protocol = true;
@@ -142,12 +162,13 @@ TestPlan drawn_protocol(const TestPlan& plan, Random& random) {
   const double rate = random.log_uniform(10.0, 100.0);
   const double dwell = random.unit() < 1.0 / 3.0 ? 0.0 : random.log_uniform(10.0, 300.0);
   out.amplitude_written_as_peak = random.unit() < 0.5;
-  for (auto& p : out.dynamic) {
-    p.cycles = cycles;
-    p.fit_cycles = cycles / 2;
-    p.preload_rate_mm_min = rate;
-    p.dwell_s = dwell;
-  }
+  for (auto* tests : {&out.dynamic, &out.extra_dynamic})
+    for (auto& p : *tests) {
+      p.cycles = cycles;
+      p.fit_cycles = cycles / 2;
+      p.preload_rate_mm_min = rate;
+      p.dwell_s = dwell;
+    }
   return out;
 }
 
@@ -226,9 +247,17 @@ void write_campaign(const CampaignTruth& truth, const TestPlan& plan, const fs::
                           {"density_kg_m3", truth.base.density_kg_m3}};
   manifest["tests"] = nlohmann::json::array();
   std::uint64_t stream = 100;
-  for (const auto& p : plan.quasi_static) {
+  std::uint64_t extra_stream = 200;
+  std::vector<std::pair<const QuasiStaticProtocol*, std::uint64_t>> quasi_static;
+  for (const auto& p : plan.quasi_static) quasi_static.push_back({&p, stream++});
+  std::vector<std::pair<const DynamicProtocol*, std::uint64_t>> dynamic;
+  for (const auto& p : plan.dynamic) dynamic.push_back({&p, stream++});
+  for (const auto& p : plan.extra_quasi_static) quasi_static.push_back({&p, extra_stream++});
+  for (const auto& p : plan.extra_dynamic) dynamic.push_back({&p, extra_stream++});
+  for (const auto& [pp, own_stream] : quasi_static) {
+    const QuasiStaticProtocol& p = *pp;
     QuasiStaticRecord rec = run_quasi_static(truth.base, truth.effects, sp, p);
-    Random noise(mix_seed(truth.seed, stream++));
+    Random noise(mix_seed(truth.seed, own_stream));
     add_quasi_static_noise(rec, plan.noise, noise);
     const std::string file = p.name + ".csv";
     write_csv(dir / file, {"SYNTHETIC quasi-static record from foreign_campaigns: " + p.name, "compression positive"},
@@ -237,8 +266,9 @@ void write_campaign(const CampaignTruth& truth, const TestPlan& plan, const fs::
                                  {"rate_mm_min", p.rate_mm_min}, {"lateral", "free"}, {"use", p.use},
                                  {"preflex_cycles", 0}, {"lift_off", true}});
   }
-  for (const auto& p : plan.dynamic) {
-    Random noise(mix_seed(truth.seed, stream++));
+  for (const auto& [pp, own_stream] : dynamic) {
+    const DynamicProtocol& p = *pp;
+    Random noise(mix_seed(truth.seed, own_stream));
     const DynamicRecord rec = run_dynamic(truth.base, truth.effects, sp, p, plan.noise, &noise);
     const std::string file = p.name + ".csv";
     write_csv(dir / file,

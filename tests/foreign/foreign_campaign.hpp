@@ -36,7 +36,17 @@ struct TestPlan {
   /// With unrecorded_protocol: the written acceleration_amplitude_m_s2 is the PEAK amplitude (half the
   /// peak-to-peak one the machine ran), as a lab that says "amplitude" for the peak writes it. Per campaign.
   bool amplitude_written_as_peak = false;
+  /// Tests written besides the plan's (the test diagnose proposes to separate two explanations), each with its own
+  /// noise stream from 200 on: the truth is drawn and scaled on the plan's tests only, so a campaign with extra tests
+  /// has the same truth and the same records of the plan's tests as without.
+  std::vector<QuasiStaticProtocol> extra_quasi_static;
+  std::vector<DynamicProtocol> extra_dynamic;
 };
+
+/// An extra quasi-static test at `rate_mm_min` (validation, sampled every 0.2 mm, at least 10 Hz) and an extra dynamic
+/// sweep at `preload_strain` (the plan's first sweep otherwise), named qs_RATE / dyn_PRELOAD_extra.
+QuasiStaticProtocol extra_rate(double rate_mm_min);
+DynamicProtocol extra_preload(const TestPlan& plan, double preload_strain);
 
 TestPlan standard_plan();
 

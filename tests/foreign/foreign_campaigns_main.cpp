@@ -1,5 +1,5 @@
 // foreign_campaigns --out DIR --count N --seed S [--pairs P] [--controls C] [--dynamic-noise amplitude|reading]
-//                   [--protocol recorded|unrecorded]
+//                   [--protocol recorded|unrecorded] [--extra-rate MM_MIN]... [--extra-preload STRAIN]...
 // Test-data generation for the diagnose benchmark (issue 15), independent of cushion's material/ and
 // calibration/: writes N seeded campaigns DIR/c000 ... in cushion's campaign format, each with truth.json,
 // and DIR/index.csv. Defaults: P = C = round(N/6). Deterministic for a seed.
@@ -8,6 +8,7 @@
 #include <exception>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "foreign_campaign.hpp"
 
@@ -17,10 +18,13 @@ int usage(const std::string& message) {
   std::cerr << (message.empty() ? "" : "foreign_campaigns: " + message + "\n")
             << "usage: foreign_campaigns --out DIR --count N --seed S [--pairs P] [--controls C]\n"
                "                         [--dynamic-noise amplitude|reading] [--protocol recorded|unrecorded]\n"
+               "                         [--extra-rate MM_MIN]... [--extra-preload STRAIN]...\n"
                "  N campaigns DIR/c000... (P with two effect families, C controls without effect, the rest one\n"
                "  family each, balanced over families and forms), each campaign.json + CSV + truth.json, and\n"
                "  DIR/index.csv. Defaults: P = C = round(N/6); dynamic noise relative to the oscillating force;\n"
-               "  protocol recorded (unrecorded: each campaign runs its own dynamic protocol, keys left out).\n";
+               "  protocol recorded (unrecorded: each campaign runs its own dynamic protocol, keys left out).\n"
+               "  --extra-rate / --extra-preload: one more quasi-static test at that rate / dynamic sweep at that\n"
+               "  preload in every campaign (validation), the truth and the other records unchanged.\n";
   return message.empty() ? 0 : 2;
 }
 
@@ -30,6 +34,7 @@ int main(int argc, char** argv) {
   std::string out, dynamic_noise = "amplitude", protocol = "recorded";
   long count = -1, pairs = -1, controls = -1;
   long long seed = -1;
+  std::vector<double> extra_rates, extra_preloads;
   try {
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
@@ -43,6 +48,8 @@ int main(int argc, char** argv) {
       else if (a == "--controls") controls = std::stol(v);
       else if (a == "--dynamic-noise") dynamic_noise = v;
       else if (a == "--protocol") protocol = v;
+      else if (a == "--extra-rate") extra_rates.push_back(std::stod(v));
+      else if (a == "--extra-preload") extra_preloads.push_back(std::stod(v));
       else return usage("unknown option " + a);
     }
   } catch (const std::exception&) {
@@ -51,12 +58,18 @@ int main(int argc, char** argv) {
   if (out.empty() || count < 1 || seed < 0) return usage("--out, --count >= 1 and --seed >= 0 are required");
   if (dynamic_noise != "amplitude" && dynamic_noise != "reading") return usage("--dynamic-noise: amplitude or reading");
   if (protocol != "recorded" && protocol != "unrecorded") return usage("--protocol: recorded or unrecorded");
+  for (double r : extra_rates)
+    if (!(r > 0.0 && r <= 1e5)) return usage("--extra-rate: a crosshead rate in (0, 1e5] mm/min");
+  for (double p : extra_preloads)
+    if (!(p > 0.0 && p < 0.9)) return usage("--extra-preload: a nominal preload strain in (0, 0.9)");
   if (pairs < 0) pairs = std::lround(count / 6.0);
   if (controls < 0) controls = std::lround(count / 6.0);
   try {
     foreign_bench::TestPlan plan = foreign_bench::standard_plan();
     plan.noise.dynamic_relative_to_reading = dynamic_noise == "reading";
     plan.unrecorded_protocol = protocol == "unrecorded";
+    for (double r : extra_rates) plan.extra_quasi_static.push_back(foreign_bench::extra_rate(r));
+    for (double p : extra_preloads) plan.extra_dynamic.push_back(foreign_bench::extra_preload(plan, p));
     foreign_bench::write_campaign_set(out, static_cast<int>(count), static_cast<int>(pairs), static_cast<int>(controls),
                                       static_cast<std::uint64_t>(seed), plan, std::cout);
   } catch (const std::exception& e) {

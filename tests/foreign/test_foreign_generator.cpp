@@ -4,6 +4,10 @@
 
 #include <cmath>
 #include <complex>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <iterator>
 #include <map>
 #include <numbers>
 
@@ -148,6 +152,32 @@ TEST(ForeignCampaign, MixIsBalancedAndDeterministic) {
   EXPECT_EQ(controls, 10);
   for (const auto& family : effect_families()) EXPECT_EQ(singles[family], 8) << family;
   for (const auto& [form, n] : forms) EXPECT_GE(n, 2) << form;
+}
+
+TEST(ForeignCampaign, ExtraTestsLeaveTheTruthAndThePlanRecordsUnchanged) {
+  // The same campaign written without and with an extra rate and preload (unrecorded protocol, so the extra sweep
+  // must follow the campaign's drawn protocol too): identical truth.json and plan CSV files, byte for byte; the
+  // extra files exist and the manifest lists them.
+  const auto dir = std::filesystem::temp_directory_path() / "cushion_foreign_extra";
+  std::filesystem::remove_all(dir);
+  TestPlan plan = standard_plan();
+  plan.unrecorded_protocol = true;
+  write_campaign_set(dir / "plain", 1, 0, 0, 3, plan, std::cout);
+  plan.extra_quasi_static.push_back(extra_rate(3000.0));
+  plan.extra_dynamic.push_back(extra_preload(plan, 0.65));
+  write_campaign_set(dir / "extra", 1, 0, 0, 3, plan, std::cout);
+  auto text = [](const std::filesystem::path& f) {
+    std::ifstream in(f);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  for (const char* f : {"truth.json", "qs_12.csv", "qs_120.csv", "qs_600.csv", "dyn_25.csv", "dyn_50.csv"})
+    EXPECT_EQ(text(dir / "plain" / "c000" / f), text(dir / "extra" / "c000" / f)) << f;
+  EXPECT_TRUE(std::filesystem::exists(dir / "extra" / "c000" / "qs_3000_extra.csv"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "extra" / "c000" / "dyn_65_extra.csv"));
+  const std::string manifest = text(dir / "extra" / "c000" / "campaign.json");
+  EXPECT_NE(manifest.find("qs_3000_extra.csv"), std::string::npos);
+  EXPECT_NE(manifest.find("dyn_65_extra.csv"), std::string::npos);
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
