@@ -851,8 +851,9 @@ void winner_verdict(const material::MaterialSpec& baseline, const DiagnoseOption
 void find_rival(const Campaign& campaign, const DiagnoseOptions& options, Diagnosis& d, std::ostream& log) {
   const CandidateFit& w = d.candidates.front();
   auto nests_winner = [&](const CandidateFit& f) {
-    return std::all_of(w.kinds.begin(), w.kinds.end(),
-                       [&](const std::string& k) { return std::find(f.kinds.begin(), f.kinds.end(), k) != f.kinds.end(); });
+    return std::all_of(w.kinds.begin(), w.kinds.end(), [&](const std::string& k) {
+      return std::find(f.kinds.begin(), f.kinds.end(), k) != f.kinds.end();
+    });
   };
   for (std::size_t i = 1; i < d.candidates.size(); ++i) {
     const CandidateFit& f = d.candidates[i];
@@ -862,10 +863,12 @@ void find_rival(const Campaign& campaign, const DiagnoseOptions& options, Diagno
     try {
       const material::MaterialDefinition a = material::build_material(w.fitted, "winner");
       const material::MaterialDefinition b = material::build_material(f.fitted, "rival");
-      d.rival = Rival{f.name(), f.delta_bic, separating_tests(*a.model, *b.model, campaign, d.noise, options.compare,
-                                                                   options.quasi_static_points)};
+      d.rival =
+          Rival{f.name(), f.delta_bic,
+                separating_tests(*a.model, *b.model, campaign, d.noise, options.compare, options.quasi_static_points)};
     } catch (const std::exception& e) {
-      d.warnings.push_back("the tests that would separate " + w.name() + " from " + f.name() + " could not be run: " + e.what());
+      d.warnings.push_back("the tests that would separate " + w.name() + " from " + f.name() +
+                           " could not be run: " + e.what());
       return;
     }
     log << "diagnose: " << f.name() << " explains the data about as well as " << w.name() << " (dBIC "
@@ -881,8 +884,9 @@ std::string rival_sentence(const Diagnosis& d, const DiagnoseOptions& options) {
   const Rival& r = *d.rival;
   const CandidateFit& w = d.candidates[*d.winner];
   std::ostringstream o;
-  o << " " << r.name << " explains these tests about as well (dBIC " << fmt(r.delta_bic, 4) << " vs " << fmt(w.delta_bic, 4)
-    << ", within " << fmt(options.strong_evidence) << "): this campaign cannot tell " << w.name() << " from " << r.name << ".";
+  o << " " << r.name << " explains these tests about as well (dBIC " << fmt(r.delta_bic, 4) << " vs "
+    << fmt(w.delta_bic, 4) << ", within " << fmt(options.strong_evidence) << "): this campaign cannot tell " << w.name()
+    << " from " << r.name << ".";
   if (r.tests.empty() || !std::isfinite(r.tests.front().separation)) {
     o << " No separating test could be run.";
     return o.str();
@@ -894,8 +898,9 @@ std::string rival_sentence(const Diagnosis& d, const DiagnoseOptions& options) {
       << fmt(best.delta_chi2(), 2) << ").";
     return o.str();
   }
-  o << " The test that would separate them: " << best.name << " (their predictions differ by " << fmt(best.separation, 3)
-    << "x noise over its " << best.residuals << " residuals: chi2 " << fmt(best.delta_chi2(), 3) << " between them)";
+  o << " The test that would separate them: " << best.name << " (their predictions differ by "
+    << fmt(best.separation, 3) << "x noise over its " << best.residuals << " residuals: chi2 "
+    << fmt(best.delta_chi2(), 3) << " between them)";
   if (r.tests.size() > 1 && std::isfinite(r.tests[1].separation) && r.tests[1].delta_chi2() > options.strong_evidence)
     o << "; next: " << r.tests[1].name << " (chi2 " << fmt(r.tests[1].delta_chi2(), 3) << ")";
   o << ".";

@@ -133,8 +133,8 @@ struct CandidateFit {
 /// strong_evidence of the winner's (a candidate whose families include all of the winner's is not a rival: it
 /// nests the winner). The tests that would tell the two fitted models apart (separating_test.hpp), best first.
 struct Rival {
-  std::string name;              ///< the rival candidate, "kind" or "kind + kind"
-  double delta_bic = 0.0;        ///< its dBIC [-]
+  std::string name;        ///< the rival candidate, "kind" or "kind + kind"
+  double delta_bic = 0.0;  ///< its dBIC [-]
   std::vector<SeparatingTest> tests;
 };
 

@@ -85,15 +85,16 @@ nlohmann::json protocol_json(const ProtocolSearch& p) {
 std::string rival_markdown(const Rival& r, const std::string& winner) {
   std::ostringstream o;
   o << "\n## Equally explained: " << winner << " or " << r.name << "\n\n"
-    << "Tests this campaign does not have, run with both fitted models; separation = RMS difference of their predictions "
-       "in units of the campaign's noise for that kind of test; chi2 = n separation^2, what data made by one model would "
-       "add to the other's chi2 over the test's n residuals (above the evidence threshold 10: one such test tells them "
-       "apart).\n\n"
+    << "Tests this campaign does not have, run with both fitted models; separation = RMS difference of their "
+       "predictions in units of the campaign's noise for that kind of test; chi2 = n separation^2, what data made by "
+       "one model would add to the other's chi2 over the test's n residuals (above the evidence threshold 10: one such "
+       "test tells them apart).\n\n"
     << "| test | separation | n | chi2 |\n|---|---|---|---|\n";
   for (const auto& t : r.tests)
     o << "| " << t.name << " | "
-      << (std::isfinite(t.separation) ? fmt(t.separation, 3) + " | " + std::to_string(t.residuals) + " | " + fmt(t.delta_chi2(), 3)
-                                      : "failed: " + t.failure + " | | ")
+      << (std::isfinite(t.separation)
+              ? fmt(t.separation, 3) + " | " + std::to_string(t.residuals) + " | " + fmt(t.delta_chi2(), 3)
+              : "failed: " + t.failure + " | | ")
       << " |\n";
   return o.str();
 }
@@ -101,11 +102,12 @@ std::string rival_markdown(const Rival& r, const std::string& winner) {
 nlohmann::json rival_json(const Rival& r) {
   nlohmann::json tests = nlohmann::json::array();
   for (const auto& t : r.tests)
-    tests.push_back({{"test", t.name},
-                     {"separation", std::isfinite(t.separation) ? nlohmann::json(t.separation) : nlohmann::json(nullptr)},
-                     {"residuals", t.residuals},
-                     {"delta_chi2", std::isfinite(t.separation) ? nlohmann::json(t.delta_chi2()) : nlohmann::json(nullptr)},
-                     {"failure", t.failure}});
+    tests.push_back(
+        {{"test", t.name},
+         {"separation", std::isfinite(t.separation) ? nlohmann::json(t.separation) : nlohmann::json(nullptr)},
+         {"residuals", t.residuals},
+         {"delta_chi2", std::isfinite(t.separation) ? nlohmann::json(t.delta_chi2()) : nlohmann::json(nullptr)},
+         {"failure", t.failure}});
   return {{"name", r.name}, {"delta_bic", r.delta_bic}, {"separating_tests", tests}};
 }
 

@@ -45,7 +45,8 @@ NoiseScales noise_scales(const Campaign& c, const std::vector<TestNoise>& noise)
     if (i >= noise.size() || !noise[i].known) continue;
     const DynamicModuli& m = c.dynamic[j].moduli;
     double mean = 0.0;
-    for (std::size_t k = 0; k < m.frequency.size(); ++k) mean += std::abs(std::complex<double>(m.storage[k], m.loss[k]));
+    for (std::size_t k = 0; k < m.frequency.size(); ++k)
+      mean += std::abs(std::complex<double>(m.storage[k], m.loss[k]));
     mean /= std::max<std::size_t>(1, m.frequency.size());
     if (mean > 0.0) modulus.push_back(noise[i].modulus / mean);
     phase.push_back(noise[i].phase);
@@ -103,20 +104,24 @@ void quasi_static_proposals(const Campaign& c, const NoiseScales& n, const Compa
     return p;
   };
   auto add = [&](std::string name, QuasiStaticProtocol p) {
-    out.push_back({std::move(name), points, [p, &lab, s = n.stress](const material::Material& a, const material::Material& b) {
-                     return quasi_static_separation(a, b, lab, p, s);
-                   }});
+    out.push_back(
+        {std::move(name), points, [p, &lab, s = n.stress](const material::Material& a, const material::Material& b) {
+           return quasi_static_separation(a, b, lab, p, s);
+         }});
   };
   const double peak = seg.peak_strain, slow = by_rate.front()->rate, fast = by_rate.back()->rate;
   const std::string at = " to " + fmt(100 * peak) + " % compression";
-  add("quasi-static at " + fmt(slow * 6.0, 4) + " mm/min (a tenth of the slowest rate)" + at, protocol_at(slow / 10.0, peak));
-  add("quasi-static at " + fmt(fast * 300.0, 4) + " mm/min (five times the fastest rate)" + at, protocol_at(fast * 5.0, peak));
+  add("quasi-static at " + fmt(slow * 6.0, 4) + " mm/min (a tenth of the slowest rate)" + at,
+      protocol_at(slow / 10.0, peak));
+  add("quasi-static at " + fmt(fast * 300.0, 4) + " mm/min (five times the fastest rate)" + at,
+      protocol_at(fast * 5.0, peak));
   QuasiStaticProtocol again = protocol_at(mid.rate, peak);
   again.prior.preflex_cycles += 1;
   again.prior.preflex_strain = peak;
   again.prior.rest_s = 0.0;
   add(mid.name + " repeated at once on the same specimen (a second loading: preflex_cycles " +
-          std::to_string(again.prior.preflex_cycles) + ", rest_between_tests_s 0)", again);
+          std::to_string(again.prior.preflex_cycles) + ", rest_between_tests_s 0)",
+      again);
   QuasiStaticProtocol hold = protocol_at(mid.rate, peak);
   hold.hold_s = 300.0;
   add(mid.name + " with a 300 s hold at " + fmt(100 * peak) + " % compression (relaxation)", hold);
@@ -132,13 +137,15 @@ void dynamic_proposals(const Campaign& c, const NoiseScales& n, const CompareOpt
   const DynamicTest& first = c.dynamic.front();
   const DynamicProtocol base = protocol_of(first, o.dynamic_steps_per_cycle, o.preload_rate_mm_min);
   auto add = [&](std::string name, DynamicProtocol p, double noise_factor) {
-    out.push_back({std::move(name), 2 * static_cast<int>(p.frequencies_Hz.size()), [p, &lab, n, noise_factor](const material::Material& a, const material::Material& b) {
+    out.push_back({std::move(name), 2 * static_cast<int>(p.frequencies_Hz.size()),
+                   [p, &lab, n, noise_factor](const material::Material& a, const material::Material& b) {
                      return dynamic_separation(a, b, lab, p, n, noise_factor);
                    }});
   };
   for (double preload : {0.5 * lo, std::min(0.7, hi + 0.15)}) {
-    if (preload < 0.02 || std::any_of(c.dynamic.begin(), c.dynamic.end(),
-                                      [&](const DynamicTest& t) { return std::abs(t.preload_strain - preload) < 0.02; }))
+    if (preload < 0.02 || std::any_of(c.dynamic.begin(), c.dynamic.end(), [&](const DynamicTest& t) {
+          return std::abs(t.preload_strain - preload) < 0.02;
+        }))
       continue;
     DynamicProtocol p = base;
     p.preload_strain = preload;
@@ -148,8 +155,8 @@ void dynamic_proposals(const Campaign& c, const NoiseScales& n, const CompareOpt
   for (double factor : {0.25, 4.0}) {
     DynamicProtocol p = base;
     p.acceleration_amplitude *= factor;
-    add(first.name + " at " + (factor < 1 ? "a quarter of" : "four times") + " its excitation (acceleration_amplitude_m_s2 " +
-            fmt(amplitude * factor) + ")",
+    add(first.name + " at " + (factor < 1 ? "a quarter of" : "four times") +
+            " its excitation (acceleration_amplitude_m_s2 " + fmt(amplitude * factor) + ")",
         p, std::max(1.0, 1.0 / factor));
   }
 }

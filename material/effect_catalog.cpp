@@ -90,11 +90,15 @@ const std::vector<Entry>& entries() {
       {{"strain_dependent_prony",
         "Prony moduli scaled by f(J) = J^-c with the compression level (a series fitted at one preload fails at "
         "another)",
-        {{"coefficient_c", "c: f(J) = J^-c ~ 1 + c (-ln J)", 1.0, -10.0, 10.0, false, true, false}},
+        {{"coefficient_c", "c: f(J) = J^-c ~ 1 + c (-ln J)", 1.0, -10.0, 10.0, false, true, false},
+         {"history_share",
+          "w: share of f applied to each increment as it enters the Prony state (f^w) rather than to the stored "
+          "stress now (f^(1-w)); 0: the current J scales the whole viscous stress",
+          0.0, 0.0, 1.0, false, true, false, 0.5}},
         true},
        [](const BuildContext& c) -> std::shared_ptr<const Material> {
          return std::make_shared<StrainDependentPronyEffect>(std::dynamic_pointer_cast<const Viscoelastic>(c.inner),
-                                                             c.value.at("coefficient_c"));
+                                                             c.value.at("coefficient_c"), c.value.at("history_share"));
        }},
       {{"stiffness_damping",
         "stiffness-proportional (Rayleigh beta) damping beta_s C_d dE/dt, C_d = (1 - w) C0 + w C_e: the initial "

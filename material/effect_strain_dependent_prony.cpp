@@ -6,9 +6,12 @@
 
 namespace cushion::material {
 
-StrainDependentPronyEffect::StrainDependentPronyEffect(std::shared_ptr<const Viscoelastic> inner, double coefficient_c)
-    : EffectDecorator(inner, 0), visco_(std::move(inner)), c_(coefficient_c) {
+StrainDependentPronyEffect::StrainDependentPronyEffect(std::shared_ptr<const Viscoelastic> inner, double coefficient_c,
+                                                       double history_share)
+    : EffectDecorator(inner, 0), visco_(std::move(inner)), c_(coefficient_c), w_(history_share) {
   if (!std::isfinite(c_)) throw std::invalid_argument("strain_dependent_prony: coefficient c must be finite");
+  if (!(w_ >= 0.0 && w_ <= 1.0))
+    throw std::invalid_argument("strain_dependent_prony: history_share must lie in [0, 1]");
 }
 
 double StrainDependentPronyEffect::factor(double J) const { return std::pow(J, -c_); }
@@ -21,16 +24,31 @@ PointResponse StrainDependentPronyEffect::integrate(const Mat3& F_old, const Mat
   // The Viscoelastic state starts with S_inf at F_new; its viscous part is r.S - S_inf = sum a_i H_i.
   const Vec6 S_inf = Eigen::Map<const Vec6>(state_new.data());
   const Mat6 C_inf = visco_->long_term_base().evaluate(F_new).dS_dE;
-  const Vec6 S_viscous = r.S - S_inf;
-  const double J = F_new.determinant(), f = factor(J);
-  const Vec6 df_dE = -c_ * f / J * dJ_dE(F_new);
-  r.S = S_inf + f * S_viscous;
-  r.dS_dE = C_inf + f * (r.dS_dE - C_inf) + S_viscous * df_dE.transpose();
+  const double J = F_new.determinant(), phi = factor(J);
+  const Vec6 dphi_dE = -c_ * phi / J * dJ_dE(F_new);
+  Vec6 V = r.S - S_inf;              // sum a_i H_i of the inner (unweighted) update
+  const Mat6 A_C = r.dS_dE - C_inf;  // A C_inf, the inner viscous tangent
+  Mat6 dV_dE = A_C;
+  if (w_ > 0.0) {  // weight the increment that entered each H_i by phi^w (the inner added it with weight 1)
+    const Vec6 dS_inf = S_inf - Eigen::Map<const Vec6>(state_old.data());
+    const double phi_w = std::pow(phi, w_);
+    Vec6 A_dS = Vec6::Zero();  // sum a_i (1 - e^{-x_i})/x_i dS_inf
+    for (std::size_t i = 0; i < visco_->terms().size(); ++i) {
+      const double weight = prony_recursion(dt, visco_->terms()[i].tau).weight;
+      Eigen::Map<Vec6>(state_new.data() + 6 * (1 + i)) += (phi_w - 1.0) * weight * dS_inf;
+      A_dS += visco_->relative_to_long_term()[i] * weight * dS_inf;
+    }
+    V += (phi_w - 1.0) * A_dS;
+    dV_dE = phi_w * A_C + w_ * std::pow(phi, w_ - 1.0) * A_dS * dphi_dE.transpose();
+  }
+  const double scale = std::pow(phi, 1.0 - w_);
+  r.S = S_inf + scale * V;
+  r.dS_dE = C_inf + scale * dV_dE + (1.0 - w_) * std::pow(phi, -w_) * V * dphi_dE.transpose();
   return r;
 }
 
 Vec6 StrainDependentPronyEffect::viscous_stress(const Mat3& F, std::span<const double> state) const {
-  return factor(F.determinant()) * EffectDecorator::viscous_stress(F, state);
+  return std::pow(factor(F.determinant()), 1.0 - w_) * EffectDecorator::viscous_stress(F, state);
 }
 
 Mat6c StrainDependentPronyEffect::complex_tangent(const Mat3& F_base, double omega) const {
@@ -41,7 +59,9 @@ Mat6c StrainDependentPronyEffect::complex_tangent(const Mat3& F_base, double ome
 
 std::string StrainDependentPronyEffect::describe() const {
   std::ostringstream o;
-  o << "strain-dependent Prony moduli (f = J^-c, c = " << c_ << ") over " << visco_->describe();
+  o << "strain-dependent Prony moduli (f = J^-c, c = " << c_;
+  if (w_ > 0.0) o << ", history share " << w_;
+  o << ") over " << visco_->describe();
   return o.str();
 }
 

@@ -1,14 +1,22 @@
 #pragma once
 /// Prony moduli that scale with the compression level (the paper's suspect that a series fitted at
 /// one preload fails at another, section 5 "Discussion", point 2). Wraps a Viscoelastic model
-///   S = S_inf + sum a_i H_i   (material/viscoelastic.hpp, same state and the same H_i update)
-/// and scales its viscous part by a function of the volume ratio J = det F:
-///   S = S_inf + f(J) sum a_i H_i,   f(J) = J^{-c}   (c > 0: stronger relaxation in compression;
-///   f = e^{-c ln J} ~ 1 + c (-ln J) for small strain, and stays positive at any J and c).
-/// Tangent: dS/dE = C_inf + f (C_visco - C_inf) + (sum a_i H_i) (x) df/dE, df/dE = -c f C^{-1}.
-/// State: exactly the Viscoelastic state (S_inf^n, then H_1..H_n), no own doubles.
-/// Small-amplitude relaxation about a relaxed preload J_b has amplitude f(J_b) sum a_i e^{-t/tau_i},
-/// and in the frequency domain (H_i = 0 at the relaxed base, so the df/dE term vanishes):
+///   S = S_inf + sum a_i H_i   (material/viscoelastic.hpp, same state)
+/// and makes its viscous part depend on the volume ratio J = det F through f(J) = J^{-c} (c > 0: stronger relaxation
+/// in compression; f = e^{-c ln J} ~ 1 + c (-ln J) for small strain, positive at any J and c), split between where
+/// the dependence acts by the history share w in [0, 1]:
+///   H_i^{n+1} = e^{-x} H_i^n + (1 - e^{-x})/x f(J_{n+1})^w (S_inf^{n+1} - S_inf^n)   (the increment weighted when it
+///                                                                                       enters the state),
+///   S = S_inf + f(J)^{1-w} sum a_i H_i                                                 (the stored stress scaled now).
+/// w = 0 (default): the whole viscous stress scaled by the current f(J) (on unloading the overstress follows J at
+/// once); w = 1: each increment keeps the weight of the compression at which it was made, a_i -> a_i f(J) in the
+/// hereditary integral (the foreign generator's "a_j -> a_j l^-c"). Tangent, with phi = f(J_{n+1}), A C_inf the inner
+/// viscous tangent (A = sum a_i (1 - e^{-x_i})/x_i), V = sum a_i H_i^{n+1} and dphi/dE = -c (phi/J) dJ/dE:
+///   dS/dE = C_inf + phi^{1-w} [phi^w A C_inf + w phi^{w-1} (sum a_i (1 - e^{-x_i})/x_i) dS_inf (x) dphi/dE]
+///           + (1 - w) phi^{-w} V (x) dphi/dE   (docs/physics.md 5.5).
+/// State: exactly the Viscoelastic state (S_inf^n, then H_1..H_n; with w > 0 the H_i hold the weighted history), no own
+/// doubles. Small-amplitude relaxation about a relaxed preload J_b has amplitude f(J_b) sum a_i e^{-t/tau_i} for every
+/// w, and in the frequency domain (H_i = 0 at the relaxed base, so the dphi/dE terms vanish):
 ///   C* = C_inf(F_b) (1 + f(J_b) sum a_i i w tau_i / (1 + i w tau_i)).
 #include "material/effect_decorator.hpp"
 #include "material/viscoelastic.hpp"
@@ -17,24 +25,26 @@ namespace cushion::material {
 
 class StrainDependentPronyEffect final : public EffectDecorator {
  public:
-  /// inner: the Viscoelastic model whose Prony part is scaled (not null); c [-] finite, else
-  /// std::invalid_argument.
-  StrainDependentPronyEffect(std::shared_ptr<const Viscoelastic> inner, double coefficient_c);
+  /// inner: the Viscoelastic model whose Prony part is scaled (not null); c [-] finite; history_share w in [0, 1];
+  /// else std::invalid_argument.
+  StrainDependentPronyEffect(std::shared_ptr<const Viscoelastic> inner, double coefficient_c,
+                             double history_share = 0.0);
 
   PointResponse integrate(const Mat3& F_old, const Mat3& F_new, double dt, std::span<const double> state_old,
                           std::span<double> state_new) const override;
   Mat6c complex_tangent(const Mat3& F_base, double omega) const override;
-  /// f(J) sum a_i H_i [MPa].
+  /// f(J)^{1-w} sum a_i H_i [MPa].
   Vec6 viscous_stress(const Mat3& F, std::span<const double> state) const override;
   std::string describe() const override;
 
   /// Scale factor f(J) = J^{-c} [-] of the Prony contributions.
   double factor(double J) const;
   double coefficient_c() const { return c_; }
+  double history_share() const { return w_; }  ///< w [-]
 
  private:
   std::shared_ptr<const Viscoelastic> visco_;
-  double c_;
+  double c_, w_;
 };
 
 }  // namespace cushion::material

@@ -22,10 +22,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path control() { return fs::path(CUSHION_SOURCE_DIR) / "cases" / "hidden_effects" / "campaign_control" / "campaign.json"; }
+fs::path control() {
+  return fs::path(CUSHION_SOURCE_DIR) / "cases" / "hidden_effects" / "campaign_control" / "campaign.json";
+}
 
 cm::MaterialSpec elastic_base() {
-  cm::MaterialSpec s = cm::read_material_file(fs::path(CUSHION_SOURCE_DIR) / "cases" / "hidden_effects" / "base_material.json").spec;
+  cm::MaterialSpec s =
+      cm::read_material_file(fs::path(CUSHION_SOURCE_DIR) / "cases" / "hidden_effects" / "base_material.json").spec;
   s.prony.clear();
   return s;
 }
@@ -72,7 +75,8 @@ TEST(SeparatingTests, DampingSeparationMatchesTheFrequencyDomain) {
     const cc::TestNoise& n = noise[c.quasi_static.size() + j];
     double mean = 0.0;
     const auto& m = c.dynamic[j].moduli;
-    for (std::size_t k = 0; k < m.frequency.size(); ++k) mean += std::abs(std::complex<double>(m.storage[k], m.loss[k]));
+    for (std::size_t k = 0; k < m.frequency.size(); ++k)
+      mean += std::abs(std::complex<double>(m.storage[k], m.loss[k]));
     relative.push_back(n.modulus / (mean / m.frequency.size()));
     phase.push_back(n.phase);
   }
@@ -96,5 +100,6 @@ TEST(SeparatingTests, DampingSeparationMatchesTheFrequencyDomain) {
     EXPECT_EQ(t.residuals, 2 * static_cast<int>(f.size()));
     EXPECT_DOUBLE_EQ(t.delta_chi2(), t.residuals * t.separation * t.separation);
   }
-  EXPECT_GT(named(tests, "quasi-static at 2400 mm/min").separation, named(tests, "quasi-static at 3 mm/min").separation);
+  EXPECT_GT(named(tests, "quasi-static at 2400 mm/min").separation,
+            named(tests, "quasi-static at 3 mm/min").separation);
 }

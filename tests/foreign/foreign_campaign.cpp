@@ -145,6 +145,15 @@ QuasiStaticProtocol extra_rate(double rate_mm_min) {
   return p;
 }
 
+QuasiStaticProtocol extra_hold(double hold_s) {
+  QuasiStaticProtocol p = extra_rate(120.0);
+  std::ostringstream name;
+  name << "qs_120_hold" << hold_s << "_extra";
+  p.name = name.str();
+  p.hold_s = hold_s;
+  return p;
+}
+
 DynamicProtocol extra_preload(const TestPlan& plan, double preload_strain) {
   if (plan.dynamic.empty()) throw std::invalid_argument("extra_preload: the plan has no dynamic test");
   DynamicProtocol p = plan.dynamic.front();

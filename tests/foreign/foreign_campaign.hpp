@@ -46,6 +46,9 @@ struct TestPlan {
 /// An extra quasi-static test at `rate_mm_min` (validation, sampled every 0.2 mm, at least 10 Hz) and an extra dynamic
 /// sweep at `preload_strain` (the plan's first sweep otherwise), named qs_RATE / dyn_PRELOAD_extra.
 QuasiStaticProtocol extra_rate(double rate_mm_min);
+/// An extra quasi-static test at 120 mm/min (the plan's calibration rate) with a hold of `hold_s` at the peak
+/// (relaxation), validation, 10 Hz, named qs_120_holdHOLD_extra.
+QuasiStaticProtocol extra_hold(double hold_s);
 DynamicProtocol extra_preload(const TestPlan& plan, double preload_strain);
 
 TestPlan standard_plan();

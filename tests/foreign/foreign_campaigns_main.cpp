@@ -1,5 +1,6 @@
 // foreign_campaigns --out DIR --count N --seed S [--pairs P] [--controls C] [--dynamic-noise amplitude|reading]
-//                   [--protocol recorded|unrecorded] [--extra-rate MM_MIN]... [--extra-preload STRAIN]...
+//                   [--protocol recorded|unrecorded]
+//                   [--extra-rate MM_MIN]... [--extra-preload STRAIN]... [--extra-hold S]...
 // Test-data generation for the diagnose benchmark (issue 15), independent of cushion's material/ and
 // calibration/: writes N seeded campaigns DIR/c000 ... in cushion's campaign format, each with truth.json,
 // and DIR/index.csv. Defaults: P = C = round(N/6). Deterministic for a seed.
@@ -15,16 +16,18 @@
 namespace {
 
 int usage(const std::string& message) {
-  std::cerr << (message.empty() ? "" : "foreign_campaigns: " + message + "\n")
-            << "usage: foreign_campaigns --out DIR --count N --seed S [--pairs P] [--controls C]\n"
-               "                         [--dynamic-noise amplitude|reading] [--protocol recorded|unrecorded]\n"
-               "                         [--extra-rate MM_MIN]... [--extra-preload STRAIN]...\n"
-               "  N campaigns DIR/c000... (P with two effect families, C controls without effect, the rest one\n"
-               "  family each, balanced over families and forms), each campaign.json + CSV + truth.json, and\n"
-               "  DIR/index.csv. Defaults: P = C = round(N/6); dynamic noise relative to the oscillating force;\n"
-               "  protocol recorded (unrecorded: each campaign runs its own dynamic protocol, keys left out).\n"
-               "  --extra-rate / --extra-preload: one more quasi-static test at that rate / dynamic sweep at that\n"
-               "  preload in every campaign (validation), the truth and the other records unchanged.\n";
+  std::cerr
+      << (message.empty() ? "" : "foreign_campaigns: " + message + "\n")
+      << "usage: foreign_campaigns --out DIR --count N --seed S [--pairs P] [--controls C]\n"
+         "                         [--dynamic-noise amplitude|reading] [--protocol recorded|unrecorded]\n"
+         "                         [--extra-rate MM_MIN]... [--extra-preload STRAIN]... [--extra-hold S]...\n"
+         "  N campaigns DIR/c000... (P with two effect families, C controls without effect, the rest one\n"
+         "  family each, balanced over families and forms), each campaign.json + CSV + truth.json, and\n"
+         "  DIR/index.csv. Defaults: P = C = round(N/6); dynamic noise relative to the oscillating force;\n"
+         "  protocol recorded (unrecorded: each campaign runs its own dynamic protocol, keys left out).\n"
+         "  --extra-rate / --extra-preload / --extra-hold: one more quasi-static test at that rate / dynamic sweep\n"
+         "  at that preload / 120 mm/min test holding S seconds at the peak in every campaign (validation), the\n"
+         "  truth and the other records unchanged.\n";
   return message.empty() ? 0 : 2;
 }
 
@@ -34,7 +37,7 @@ int main(int argc, char** argv) {
   std::string out, dynamic_noise = "amplitude", protocol = "recorded";
   long count = -1, pairs = -1, controls = -1;
   long long seed = -1;
-  std::vector<double> extra_rates, extra_preloads;
+  std::vector<double> extra_rates, extra_preloads, extra_holds;
   try {
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
@@ -48,8 +51,12 @@ int main(int argc, char** argv) {
       else if (a == "--controls") controls = std::stol(v);
       else if (a == "--dynamic-noise") dynamic_noise = v;
       else if (a == "--protocol") protocol = v;
-      else if (a == "--extra-rate") extra_rates.push_back(std::stod(v));
-      else if (a == "--extra-preload") extra_preloads.push_back(std::stod(v));
+      else if (a == "--extra-rate")
+        extra_rates.push_back(std::stod(v));
+      else if (a == "--extra-preload")
+        extra_preloads.push_back(std::stod(v));
+      else if (a == "--extra-hold")
+        extra_holds.push_back(std::stod(v));
       else return usage("unknown option " + a);
     }
   } catch (const std::exception&) {
@@ -62,6 +69,8 @@ int main(int argc, char** argv) {
     if (!(r > 0.0 && r <= 1e5)) return usage("--extra-rate: a crosshead rate in (0, 1e5] mm/min");
   for (double p : extra_preloads)
     if (!(p > 0.0 && p < 0.9)) return usage("--extra-preload: a nominal preload strain in (0, 0.9)");
+  for (double h : extra_holds)
+    if (!(h >= 0.0 && h <= 1e4)) return usage("--extra-hold: a hold in [0, 1e4] s");
   if (pairs < 0) pairs = std::lround(count / 6.0);
   if (controls < 0) controls = std::lround(count / 6.0);
   try {
@@ -70,6 +79,7 @@ int main(int argc, char** argv) {
     plan.unrecorded_protocol = protocol == "unrecorded";
     for (double r : extra_rates) plan.extra_quasi_static.push_back(foreign_bench::extra_rate(r));
     for (double p : extra_preloads) plan.extra_dynamic.push_back(foreign_bench::extra_preload(plan, p));
+    for (double h : extra_holds) plan.extra_quasi_static.push_back(foreign_bench::extra_hold(h));
     foreign_bench::write_campaign_set(out, static_cast<int>(count), static_cast<int>(pairs), static_cast<int>(controls),
                                       static_cast<std::uint64_t>(seed), plan, std::cout);
   } catch (const std::exception& e) {
