@@ -1,7 +1,7 @@
 // Two families that explain a campaign equally (diagnose step 7, separating_test.hpp), on data of the independent
 // generator (tests/foreign, its own program): campaign c021 of seed 2025 (the benchmark's; stiffness-proportional
-// damping s = beta E_t(e) e' on a soft-plateau foam). From raw data (fit, then diagnose with the two candidates
-// concerned, no pairs):
+// damping s = beta E_t(e) e' on a soft-plateau foam). From raw data, as a user runs it (`cushion diagnose CAMPAIGN
+// --candidates stiffness_damping pneumatic`, fit included):
 //  - the verdict names stiffness_damping and says that pneumatic explains the tests about as well (dBIC within 10,
 //    measured 65.35 vs 57.66), and names as the separating test a quasi-static test at 3000 mm/min (five times the
 //    fastest rate), which would add chi2 > 10 between the two fitted models;
@@ -9,33 +9,36 @@
 //    apart: stiffness_damping named, pneumatic more than 10 below it, no rival (measured 63.1 vs 21.3).
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
-#include <sstream>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
-#include "calibration/diagnose.hpp"
-#include "calibration/fit_pipeline.hpp"
 #include "foreign_program.hpp"
 
-namespace cc = cushion::calibration;
 namespace fs = std::filesystem;
 
 namespace {
 
-cc::Diagnosis diagnose_raw(const fs::path& campaign_dir) {
-  const cc::Campaign campaign = cc::read_campaign(campaign_dir / "campaign.json");
-  std::ostringstream log;
-  const cc::FitResult R = cc::fit_pipeline(campaign, cc::diagnose_base_fit_options(), log);
-  const auto spec = cc::to_spec(R.default_material, "foam", "fitted", campaign.specimen.density);
-  cc::DiagnoseOptions o;
-  o.candidates = {"stiffness_damping", "pneumatic"};
-  o.pairs_from = 0;
-  cc::Diagnosis d = cc::diagnose(spec, campaign, o, log);
-  std::cout << campaign_dir.filename().string() << ": " << d.verdict << "\n";
-  for (const auto& c : d.candidates) std::cout << "  " << c.name() << ": dBIC " << c.delta_bic << "\n";
-  return d;
+/// report.json of `cushion diagnose DIR/campaign.json --candidates stiffness_damping pneumatic -o DIR/diag`.
+nlohmann::json diagnose_raw(const fs::path& campaign_dir) {
+  const std::string command = std::string("\"") + CUSHION_BINARY + "\" diagnose \"" +
+                              (campaign_dir / "campaign.json").string() + "\" -o \"" + (campaign_dir / "diag").string() +
+                              "\" --candidates stiffness_damping pneumatic > /dev/null 2>&1";
+  EXPECT_EQ(std::system(command.c_str()), 0) << command;
+  std::ifstream in(campaign_dir / "diag" / "report.json");
+  const nlohmann::json r = nlohmann::json::parse(in);
+  std::cout << campaign_dir.filename().string() << ": " << r.at("verdict").get<std::string>() << "\n";
+  return r;
+}
+
+double delta_bic_of(const nlohmann::json& r, const std::string& name) {
+  for (const auto& c : r.at("candidates"))
+    if (c.at("name") == name) return c.at("delta_bic").get<double>();
+  ADD_FAILURE() << "no candidate " << name;
+  return 0.0;
 }
 
 }  // namespace
@@ -47,24 +50,21 @@ TEST(DiagnoseRival, TheNamedSeparatingTestTellsTheFamiliesApart) {
   const nlohmann::json truth = nlohmann::json::parse(in);
   ASSERT_EQ(truth.at("forms").at(0).get<std::string>(), "stiffness_proportional") << "the generator's mix changed";
 
-  const cc::Diagnosis d = diagnose_raw(plain / "c021");
-  ASSERT_TRUE(d.winner.has_value()) << d.verdict;
-  EXPECT_EQ(d.candidates[*d.winner].name(), "stiffness_damping");
-  ASSERT_TRUE(d.rival.has_value()) << d.verdict;
-  EXPECT_EQ(d.rival->name, "pneumatic");
-  ASSERT_FALSE(d.rival->tests.empty());
-  const cc::SeparatingTest& best = d.rival->tests.front();
-  EXPECT_EQ(best.name.rfind("quasi-static at 3000 mm/min", 0), 0u) << best.name;
-  EXPECT_GT(best.delta_chi2(), 10.0);
-  EXPECT_NE(d.verdict.find("cannot tell stiffness_damping from pneumatic"), std::string::npos) << d.verdict;
-  EXPECT_NE(d.verdict.find("The test that would separate them: quasi-static at 3000 mm/min"), std::string::npos);
+  const nlohmann::json d = diagnose_raw(plain / "c021");
+  const std::string verdict = d.at("verdict");
+  EXPECT_EQ(d.at("winner"), "stiffness_damping") << verdict;
+  ASSERT_TRUE(d.at("rival").is_object()) << verdict;
+  EXPECT_EQ(d.at("rival").at("name"), "pneumatic");
+  const nlohmann::json& best = d.at("rival").at("separating_tests").at(0);
+  EXPECT_EQ(best.at("test").get<std::string>().rfind("quasi-static at 3000 mm/min", 0), 0u) << best.dump();
+  EXPECT_GT(best.at("delta_chi2").get<double>(), 10.0);
+  EXPECT_NE(verdict.find("cannot tell stiffness_damping from pneumatic"), std::string::npos) << verdict;
+  EXPECT_NE(verdict.find("The test that would separate them: quasi-static at 3000 mm/min"), std::string::npos);
 
-  const cc::Diagnosis e = diagnose_raw(extra / "c021");
-  ASSERT_TRUE(e.winner.has_value()) << e.verdict;
-  EXPECT_EQ(e.candidates[*e.winner].name(), "stiffness_damping");
-  EXPECT_FALSE(e.rival.has_value()) << e.verdict;
-  for (const auto& c : e.candidates)
-    if (c.name() == "pneumatic") EXPECT_GT(e.candidates[*e.winner].delta_bic - c.delta_bic, 10.0);
+  const nlohmann::json e = diagnose_raw(extra / "c021");
+  EXPECT_EQ(e.at("winner"), "stiffness_damping") << e.at("verdict");
+  EXPECT_TRUE(e.at("rival").is_null()) << e.at("verdict");
+  EXPECT_GT(delta_bic_of(e, "stiffness_damping") - delta_bic_of(e, "pneumatic"), 10.0);
   fs::remove_all(plain);
   fs::remove_all(extra);
 }
