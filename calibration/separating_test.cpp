@@ -4,22 +4,19 @@
 #include <cmath>
 #include <complex>
 #include <functional>
-#include <iomanip>
 #include <limits>
-#include <sstream>
 
 #include "calibration/fit_model.hpp"
 #include "calibration/lab.hpp"
+#include "io/text_support.hpp"
 
 namespace cushion::calibration {
 
 namespace {
 
-std::string fmt(double v, int digits = 3) {
-  std::ostringstream o;
-  o << std::setprecision(digits) << v;
-  return o.str();
-}
+/// v with 3 (or 4) significant digits, for the names of the proposals.
+std::string fmt(double v) { return io::format_with("%.3g", v); }
+std::string fmt4(double v) { return io::format_with("%.4g", v); }
 
 double median(std::vector<double> v) {
   if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
@@ -111,9 +108,9 @@ void quasi_static_proposals(const Campaign& c, const NoiseScales& n, const Compa
   };
   const double peak = seg.peak_strain, slow = by_rate.front()->rate, fast = by_rate.back()->rate;
   const std::string at = " to " + fmt(100 * peak) + " % compression";
-  add("quasi-static at " + fmt(slow * 6.0, 4) + " mm/min (a tenth of the slowest rate)" + at,
+  add("quasi-static at " + fmt4(slow * 6.0) + " mm/min (a tenth of the slowest rate)" + at,
       protocol_at(slow / 10.0, peak));
-  add("quasi-static at " + fmt(fast * 300.0, 4) + " mm/min (five times the fastest rate)" + at,
+  add("quasi-static at " + fmt4(fast * 300.0) + " mm/min (five times the fastest rate)" + at,
       protocol_at(fast * 5.0, peak));
   QuasiStaticProtocol again = protocol_at(mid.rate, peak);
   again.prior.preflex_cycles += 1;
