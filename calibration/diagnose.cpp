@@ -138,10 +138,14 @@ class CandidateModel {
   }
 
   /// Comparison at u; nullopt when the material cannot be built or a test run fails.
+  /// u is clamped to the bounds first: a forward difference taken at a bound steps outside it (Ceres' numeric
+  /// differentiation does not know the bounds), where the material may reject the value (a share above 1).
   std::optional<CompareResult> compare_at(const double* u) const {
     ++evaluations_;
+    std::vector<double> inside(u, u + free_.size());
+    for (std::size_t i = 0; i < free_.size(); ++i) inside[i] = std::clamp(inside[i], free_[i].lower, free_[i].upper);
     try {
-      const material::MaterialDefinition def = material::build_material(spec_at(u), "candidate");
+      const material::MaterialDefinition def = material::build_material(spec_at(inside.data()), "candidate");
       CompareResult r = compare_campaign(*def.model, campaign_, options_.compare, noise_);
       for (const auto& t : r.tests)
         if (!t.failure.empty()) return std::nullopt;
@@ -222,6 +226,11 @@ ceres::Solver::Summary minimise(const CandidateModel& model, std::vector<double>
   }
   ceres::Solver::Options so;
   so.linear_solver_type = ceres::DENSE_QR;
+  // With bounds, Ceres' trust-region minimiser runs a projected Armijo line search on every step; with the default
+  // cubic interpolation each trial point also evaluates the gradient, i.e. a whole forward-difference Jacobian
+  // (k + 1 model runs) even when the full step is accepted. Bisection needs the cost only (one run per trial): on
+  // foreign campaign c052 the candidate fits took 2-4x fewer runs for the same or lower chi2 (session 14).
+  so.line_search_interpolation_type = ceres::BISECTION;
   so.max_num_iterations = max_iterations;
   so.function_tolerance = 1e-6;
   so.parameter_tolerance = 1e-6;
@@ -278,13 +287,19 @@ CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector
   return fit;
 }
 
-/// Runs jobs on `threads` threads; results in job order.
+/// Runs jobs on `threads` threads; results in job order. With expected costs (any unit, one per job) the jobs start
+/// longest first, so that a long job does not start last on one thread while the others idle.
 template <class Result>
-std::vector<Result> run_all(const std::vector<std::function<Result()>>& jobs, int threads) {
+std::vector<Result> run_all(const std::vector<std::function<Result()>>& jobs, int threads,
+                            const std::vector<double>& expected_cost = {}) {
+  std::vector<std::size_t> order(jobs.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  if (expected_cost.size() == jobs.size())
+    std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) { return expected_cost[a] > expected_cost[b]; });
   std::vector<Result> out(jobs.size());
   std::atomic<std::size_t> next{0};
   auto worker = [&] {
-    for (std::size_t i; (i = next++) < jobs.size();) out[i] = jobs[i]();
+    for (std::size_t k; (k = next++) < jobs.size();) out[order[k]] = jobs[order[k]]();
   };
   std::vector<std::thread> pool;
   for (int t = 1; t < std::max(1, threads); ++t) pool.emplace_back(worker);
@@ -634,8 +649,10 @@ std::vector<CandidateFit> fit_pairs(const CandidateJobs& c, const std::vector<Ca
                                     const std::vector<std::size_t>& top, std::ostream& log) {
   const bool joint = c.options.joint_base && c.base_ref();
   std::vector<std::function<CandidateFit()>> jobs;
+  std::vector<double> expected_seconds;  // a pair costs about what its two singles cost together
   for (std::size_t a = 0; a < top.size(); ++a)
     for (std::size_t b = a + 1; b < top.size(); ++b) {
+      expected_seconds.push_back(fits[top[a]].seconds + fits[top[b]].seconds);
       std::vector<material::EffectSpec> e = fits[top[a]].effects;
       e.push_back(fits[top[b]].effects.front());
       if (!joint) {
@@ -646,7 +663,7 @@ std::vector<CandidateFit> fit_pairs(const CandidateJobs& c, const std::vector<Ca
         return fit_candidate(base, e, c.campaign, c.d.noise, c.d.residuals, c.d.baseline_bic, c.options, true, true);
       });
     }
-  std::vector<CandidateFit> pairs = run_all(jobs, c.options.threads);
+  std::vector<CandidateFit> pairs = run_all(jobs, c.options.threads, expected_seconds);
   for (const auto& f : pairs) log_fit(log, f, false);
   return pairs;
 }

@@ -16,7 +16,8 @@ namespace {
 
 constexpr int default_steps_ramp_hold = 100;
 constexpr int default_steps_per_cycle = 64;
-constexpr double stretch_tolerance = 1e-12;  // Newton stop: |dl| <= 1e-12 l
+constexpr double stretch_tolerance = 1e-12;        // Newton stop: |dl| <= 1e-12 l
+constexpr double negligible_stretch_step = 1e-15;  // a correction this small is not applied: |dl| <= 1e-15 l
 constexpr int max_newton_iterations = 60;
 constexpr int max_backtracks = 30;
 
@@ -103,6 +104,9 @@ PointResponse solve_free_axes(const Material& material, const Committed& committ
       last_stretch_step = std::max(last_stretch_step, std::abs(l_new - l_old) / std::max(l_old, 1.0));
     }
     if (!std::isfinite(last_stretch_step)) break;
+    // A next correction at round-off level: the point just evaluated (F and state_new hold it) is the solution, no
+    // need to evaluate once more a point that differs by less than 1e-15 l (one material call of ~3 saved).
+    if (last_stretch_step <= negligible_stretch_step) return r;
   }
   throw std::runtime_error("point driver: free-stretch Newton (S_aa = 0) did not converge in " +
                            std::to_string(max_newton_iterations) + " iterations at " + time_text(time));
@@ -124,6 +128,18 @@ Mat3 imposed_F(LoadMode mode, double control, const Mat3& previous) {
     case LoadMode::simple_shear: F(0, 1) = control; break;
   }
   return F;
+}
+
+/// Start of the free-stretch Newton: the diagonal of the committed F extrapolated linearly in time from the increment
+/// before (ratio = dt/dt_before, at most 2; 0 at the first increment). Only a guess: Newton converges to the same point
+/// from it, in one iteration fewer on a smooth path (a material whose free stretches move, e.g. an air pressure).
+Mat3 extrapolated_guess(const Mat3& now, const Mat3& before, double ratio) {
+  Mat3 guess = now;
+  for (int a = 0; a < 3; ++a) {
+    const double l = now(a, a) + ratio * (now(a, a) - before(a, a));
+    if (l > 0.5 * now(a, a)) guess(a, a) = l;
+  }
+  return guess;
 }
 
 /// The control value a deformation gradient corresponds to in a mode.
@@ -234,28 +250,36 @@ PointResult run_point(const Material& material, LoadMode mode, const History& hi
       result.warnings.push_back(r.message);
   };
 
+  Mat3 F_before = committed.F;  // the committed F one increment earlier, and that increment's dt
+  double dt_before = 0.0;
+  auto commit = [&](const Mat3& F, std::vector<double>& state, double dt) {
+    F_before = committed.F;
+    dt_before = dt;
+    committed.F = F;
+    committed.state.swap(state);
+  };
+
   // One increment from the committed point to `control` over dt; commits and records it.
   auto advance = [&](double t, double control, double dt) {
     const std::array<bool, 3> lateral_free = {false, mode == LoadMode::uniaxial_free, mode == LoadMode::uniaxial_free};
+    const Mat3 guess = extrapolated_guess(committed.F, F_before, dt_before > 0.0 ? std::min(dt / dt_before, 2.0) : 0.0);
     if (platen) {
-      Mat3 F_free = committed.F;
+      Mat3 F_free = guess;
       const PointResponse free = solve_free_axes(material, committed, F_free, {true, lateral_free[1], lateral_free[2]},
                                                  dt, t, state_free);
       require_success(free, t);
       if (F_free(0, 0) < 1.0 + control) {  // the foam recovers more slowly than the platen retracts: lift-off
-        committed.F = F_free;
-        committed.state.swap(state_free);
+        commit(F_free, state_free, dt);
         PointResponse clear = free;
         clear.S.setZero();  // S = 0 to the Newton tolerance; reported as exactly zero force
         record(t, control_of(mode, F_free), clear, false);
         return;
       }
     }
-    Mat3 F = imposed_F(mode, control, committed.F);
+    Mat3 F = imposed_F(mode, control, guess);
     const PointResponse r = solve_free_axes(material, committed, F, lateral_free, dt, t, state_new);
     require_success(r, t);
-    committed.F = F;
-    committed.state.swap(state_new);
+    commit(F, state_new, dt);
     record(t, control, r, true);
   };
 

@@ -3,7 +3,10 @@
 // the MODULI conventions and the frequency-domain factor match the closed forms of docs/physics.md 3.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "material/hyperfoam.hpp"
 #include "material/neo_hookean.hpp"
@@ -240,6 +243,31 @@ TEST(Viscoelastic, PronyConversionAndValidation) {
   EXPECT_EQ(m.state_size(), 36u);
   std::vector<double> s0(36), s1(36);
   EXPECT_EQ(m.integrate(Mat3::Identity(), uniaxial(-1.5), 0.1, s0, s1).status, Status::failed);
+}
+
+}  // namespace
+}  // namespace cushion::material
+
+namespace cushion::material {
+namespace {
+
+// prony_recursion remembers recent x = dt/tau per thread (a speed-up): whatever the order of the calls and the
+// collisions of its slots, every value must equal the closed form e^-x, (1 - e^-x)/x bit for bit.
+TEST(PronyRecursion, RememberedValuesEqualTheClosedFormWhateverTheCallOrder) {
+  std::vector<std::pair<double, double>> calls;
+  for (int k = 0; k < 400; ++k) calls.push_back({1e-4 * (1 + k % 37), std::pow(10.0, -3.0 + 0.01 * (k % 300))});
+  for (int pass = 0; pass < 3; ++pass) {
+    for (const auto& [dt, tau] : calls) {
+      const double x = dt / tau;
+      const PronyRecursion q = prony_recursion(dt, tau);
+      ASSERT_EQ(q.decay, std::exp(-x)) << "dt " << dt << " tau " << tau;
+      ASSERT_EQ(q.weight, -std::expm1(-x) / x) << "dt " << dt << " tau " << tau;
+    }
+    std::reverse(calls.begin(), calls.end());
+  }
+  const PronyRecursion instant = prony_recursion(0.0, 1.0);
+  EXPECT_EQ(instant.decay, 1.0);
+  EXPECT_EQ(instant.weight, 1.0);
 }
 
 }  // namespace
