@@ -18,8 +18,9 @@
 ///     baseline fitted on data that contain the effect). Parameters are fitted as log10(x) when flagged log_scale, else x/default; bounds: the
 ///     catalogue range, and 4 decades either side of the default for log-scale ones. Start: a coarse scan
 ///     per parameter (log-scale: default x 10^{-3..3}; else default x {0, 0.3, 1, 3, 10}), then Ceres
-///     bounded Levenberg-Marquardt with forward-difference Jacobian on the noise-normalised residuals
-///     (compare.hpp normalised_residuals). Candidates run on `threads` threads.
+///     bounded Levenberg-Marquardt with forward-difference Jacobian (parameters clamped to their bounds before each run;
+///     the projected line search by bisection, cost only) on the noise-normalised residuals
+///     (compare.hpp normalised_residuals). Candidates run on `threads` threads, longest pairs first.
 ///  3. Pairs (only when the best single leaves some test beyond noise): the `pairs_from` best singles
 ///     combined two by two, started from their single fits.
 ///  4. Penalised figure: BIC = chi2 + k ln N (chi2: sum of squared noise-normalised residuals, N their
