@@ -13,9 +13,10 @@
 #include <ceres/ceres.h>
 #include <ceres/dynamic_numeric_diff_cost_function.h>
 
-#include "material/effect_catalog.hpp"
+#include "calibration/ceres_options.hpp"
 #include "io/input_error.hpp"
 #include "io/text_support.hpp"
+#include "material/effect_catalog.hpp"
 
 namespace cushion::calibration {
 
@@ -226,11 +227,7 @@ ceres::Solver::Summary minimise(const CandidateModel& model, std::vector<double>
   }
   ceres::Solver::Options so;
   so.linear_solver_type = ceres::DENSE_QR;
-  // With bounds, Ceres' trust-region minimiser runs a projected Armijo line search on every step; with the default
-  // cubic interpolation each trial point also evaluates the gradient, i.e. a whole forward-difference Jacobian
-  // (k + 1 model runs) even when the full step is accepted. Bisection needs the cost only (one run per trial): on
-  // foreign campaign c052 the candidate fits took 2-4x fewer runs for the same or lower chi2 (session 14).
-  so.line_search_interpolation_type = ceres::BISECTION;
+  use_cost_only_line_search(so);
   so.max_num_iterations = max_iterations;
   so.function_tolerance = 1e-6;
   so.parameter_tolerance = 1e-6;

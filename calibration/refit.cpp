@@ -647,9 +647,7 @@ TimesOutcome polish_times(const Targets& g, const std::vector<double>& x0, const
   problem.AddResidualBlock(cost, nullptr, x.data());
   add_ratio_bound_and_box(problem, x.data(), g, b, options);
   ceres::Solver::Options so = dense_fit_options({1e-10, 1e-12, 1e-8, options.times_iterations});
-  // Numeric derivatives: with the default cubic interpolation every trial point of the projected line search that
-  // Ceres runs on a bounded problem evaluates a whole Jacobian (m + 1 model runs); bisection needs the cost only.
-  so.line_search_interpolation_type = ceres::BISECTION;
+  use_cost_only_line_search(so);  // numeric derivatives
   ceres::Solver::Summary summary;
   ceres::Solve(so, &problem, &summary);
   TimesOutcome out;

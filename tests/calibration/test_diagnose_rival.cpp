@@ -24,7 +24,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// report.json of `cushion diagnose DIR/campaign.json --candidates stiffness_damping pneumatic -o DIR/diag`.
+/// report.json of `cushion diagnose DIR/campaign.json --candidates stiffness_damping pneumatic --max-iterations 25
+/// -o DIR/diag`.
 nlohmann::json diagnose_raw(const fs::path& campaign_dir) {
   const std::string command = std::string("\"") + CUSHION_BINARY + "\" diagnose \"" +
                               (campaign_dir / "campaign.json").string() + "\" -o \"" +
