@@ -17,12 +17,15 @@
 ///     effect), or with joint_base the effect's parameters and the base-refit factors together (a
 ///     baseline fitted on data that contain the effect). Parameters are fitted as log10(x) when flagged log_scale, else x/default; bounds: the
 ///     catalogue range, and 4 decades either side of the default for log-scale ones. Start: a coarse scan
-///     per parameter (log-scale: default x 10^{-3..3}; else default x {0, 0.3, 1, 3, 10}), then Ceres
+///     of the effect's parameters one at a time (log-scale: default x 10^{-3..3}; else default x {0, 0.3, 1, 3, 10}),
+///     then half a decade either side of each log-scale value chosen, a value kept only when it lowers chi2 by 0.1 %
+///     (the base factors start at the reference's fit and are not scanned), then Ceres
 ///     bounded Levenberg-Marquardt with forward-difference Jacobian (parameters clamped to their bounds before each run;
 ///     the projected line search by bisection, cost only) on the noise-normalised residuals
-///     (compare.hpp normalised_residuals). Candidates run on `threads` threads, longest pairs first.
-///  3. Pairs (only when the best single leaves some test beyond noise): the `pairs_from` best singles
-///     combined two by two, started from their single fits.
+///     (compare.hpp normalised_residuals). Candidates run on `threads` threads, longest pairs first; a thread with no
+///     candidate left lends its core to the Jacobians and start scans of those still running (parallel_jobs.hpp).
+///  3. Pairs (only when the best single leaves some test beyond noise): the best single combined with each of the
+///     next `pairs_from` - 1, started from their single fits.
 ///  4. Penalised figure: BIC = chi2 + k ln N (chi2: sum of squared noise-normalised residuals, N their
 ///     number, k the fitted parameters); dBIC = BIC_baseline - BIC_candidate (> 0: better). A candidate
 ///     is SUPPORTED when dBIC > strong_evidence (Kass & Raftery: > 10 is very strong) AND it beats by
@@ -57,7 +60,7 @@ struct DiagnoseOptions {
   CompareOptions compare;
   int quasi_static_points = 100;  ///< residual samples per quasi-static test
   int max_iterations = 12;        ///< Ceres iterations per candidate
-  int pairs_from = 3;             ///< best singles combined in pairs
+  int pairs_from = 3;             ///< best singles considered for pairs (each pair has the best one)
   double strong_evidence = 10.0;  ///< dBIC threshold [-]
   int threads = 2;
   std::vector<std::string> candidates;  ///< restrict to these kinds (empty: the whole catalogue)

@@ -24,18 +24,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// report.json of `cushion diagnose DIR/campaign.json --candidates stiffness_damping pneumatic --max-iterations 25
-/// -o DIR/diag`.
+/// `cushion diagnose DIR/campaign.json --candidates stiffness_damping pneumatic --max-iterations 25`'s report.
 nlohmann::json diagnose_raw(const fs::path& campaign_dir) {
-  const std::string command = std::string("\"") + CUSHION_BINARY + "\" diagnose \"" +
-                              (campaign_dir / "campaign.json").string() + "\" -o \"" +
-                              (campaign_dir / "diag").string() +
-                              "\" --candidates stiffness_damping pneumatic --max-iterations 25 > /dev/null 2>&1";
-  EXPECT_EQ(std::system(command.c_str()), 0) << command;
-  std::ifstream in(campaign_dir / "diag" / "report.json");
-  const nlohmann::json r = nlohmann::json::parse(in);
-  std::cout << campaign_dir.filename().string() << ": " << r.at("verdict").get<std::string>() << "\n";
-  return r;
+  return cushion::foreign_program::diagnose_raw(campaign_dir,
+                                                "--candidates stiffness_damping pneumatic --max-iterations 25");
 }
 
 double delta_bic_of(const nlohmann::json& r, const std::string& name) {

@@ -1,0 +1,81 @@
+#pragma once
+/// Parallel candidate fits of diagnose (diagnose.hpp): jobs on a few threads, and a forward-difference Jacobian that
+/// borrows the core of a thread that has run out of jobs.
+///
+/// Why: candidates are fitted one per thread; at the end of a stage the last long fit (an air-flow pair: about 3x the
+/// model-run cost of the others) ran alone while the other core idled. A thread with no job left lends its core
+/// (SpareCores) until the stage ends; a Jacobian evaluated while a core is lent computes its columns on two threads.
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <functional>
+#include <thread>
+#include <vector>
+
+#include <ceres/cost_function.h>
+
+namespace cushion::calibration {
+
+/// Cores lent by threads that have run out of jobs, borrowed by Jacobian evaluations. Thread-safe.
+class SpareCores {
+ public:
+  /// One core if one is free (then give it back), else false.
+  bool borrow() {
+    for (int n = free_.load(); n > 0;)
+      if (free_.compare_exchange_weak(n, n - 1)) return true;
+    return false;
+  }
+  void lend() { ++free_; }
+  void reset() { free_ = 0; }
+
+ private:
+  std::atomic<int> free_{0};
+};
+
+/// Runs jobs on `threads` threads; results in job order. With expected costs (any unit, one per job) the jobs start
+/// longest first, so that a long job does not start last on one thread while the others idle. With `spare`, a thread
+/// that finds no job left lends its core until all jobs have ended (then none is lent).
+template <class Result>
+std::vector<Result> run_all(const std::vector<std::function<Result()>>& jobs, int threads,
+                            const std::vector<double>& expected_cost = {}, SpareCores* spare = nullptr) {
+  std::vector<std::size_t> order(jobs.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  if (expected_cost.size() == jobs.size())
+    std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) { return expected_cost[a] > expected_cost[b]; });
+  std::vector<Result> out(jobs.size());
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    for (std::size_t k; (k = next++) < jobs.size();) out[order[k]] = jobs[order[k]]();
+    if (spare) spare->lend();
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < std::max(1, threads); ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+  if (spare) spare->reset();
+  return out;
+}
+
+/// f(0), ..., f(n - 1), on two threads (each taking the next index) when `spare` lends a core, else in order. f must
+/// be safe to call from two threads at once and must not throw.
+void parallel_for(std::size_t n, SpareCores* spare, const std::function<void(std::size_t)>& f);
+
+/// A Ceres cost of one parameter block whose Jacobian is the forward difference of `residuals` (u -> r, false when
+/// the model fails), with Ceres' own rule (ceres/internal/numeric_diff.h, FORWARD: step max(sqrt(eps),
+/// relative_step |u_j|), column (r(u + step e_j) - r(u)) / step), so that a fit follows the same path as with
+/// DynamicNumericDiffCostFunction; the columns run on two threads while `spare` lends a core (parallel_for).
+/// `residuals` must be safe to call from two threads at once.
+class ForwardDifferenceCost final : public ceres::CostFunction {
+ public:
+  using Residuals = std::function<bool(const double* u, double* r)>;
+  ForwardDifferenceCost(Residuals residuals, int parameters, int n_residuals, double relative_step, SpareCores* spare);
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
+
+ private:
+  Residuals residuals_;
+  int parameters_, n_residuals_;
+  double relative_step_;
+  SpareCores* spare_;
+};
+
+}  // namespace cushion::calibration

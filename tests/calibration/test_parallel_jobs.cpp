@@ -1,0 +1,111 @@
+// parallel_jobs.hpp: the forward-difference Jacobian of diagnose's candidate fits (its columns on two threads while
+// a core is lent) and the job runner that lends the cores of threads with no job left.
+//  - the Jacobian equals Ceres' own FORWARD numeric differentiation (DynamicNumericDiffCostFunction, relative step
+//    1e-5) bit for bit, with and without a lent core: a fit follows the same path as before, on one thread or two;
+//  - it is the analytic Jacobian within the forward-difference error (relative step 1e-5: 1e-4 of the largest entry);
+//  - parallel_for calls each index once; run_all returns results in job order and lends nothing once it returns.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <functional>
+#include <vector>
+
+#include <ceres/dynamic_numeric_diff_cost_function.h>
+
+#include "calibration/parallel_jobs.hpp"
+
+namespace cc = cushion::calibration;
+
+namespace {
+
+constexpr int kParameters = 5, kResiduals = 7;
+
+/// r_i = sin((i + 1) u_0 u_1) + exp(0.1 i u_2) + u_3^3 / (1 + i) + (i - 3) u_4 and its analytic Jacobian.
+bool model(const double* u, double* r) {
+  for (int i = 0; i < kResiduals; ++i)
+    r[i] = std::sin((i + 1) * u[0] * u[1]) + std::exp(0.1 * i * u[2]) + std::pow(u[3], 3) / (1 + i) + (i - 3) * u[4];
+  return true;
+}
+
+double analytic(const double* u, int i, int j) {
+  const double c = std::cos((i + 1) * u[0] * u[1]) * (i + 1);
+  switch (j) {
+    case 0: return c * u[1];
+    case 1: return c * u[0];
+    case 2: return 0.1 * i * std::exp(0.1 * i * u[2]);
+    case 3: return 3.0 * u[3] * u[3] / (1 + i);
+    default: return i - 3.0;
+  }
+}
+
+struct Functor {
+  bool operator()(double const* const* p, double* r) const { return model(p[0], r); }
+};
+
+std::vector<double> jacobian_of(const ceres::CostFunction& cost, const std::vector<double>& u) {
+  std::vector<double> r(kResiduals), J(kResiduals * kParameters);
+  const double* p[] = {u.data()};
+  double* j[] = {J.data()};
+  EXPECT_TRUE(cost.Evaluate(p, r.data(), j));
+  return J;
+}
+
+}  // namespace
+
+TEST(ForwardDifferenceCost, EqualsCeresForwardNumericDiffBitForBitOnOneThreadOrTwo) {
+  const std::vector<double> u = {0.7, -1.3, 0.0, 2.5, -0.2};  // u_2 = 0: the minimum step sqrt(eps)
+  ceres::NumericDiffOptions nd;
+  nd.relative_step_size = 1e-5;
+  ceres::DynamicNumericDiffCostFunction<Functor, ceres::FORWARD> reference(new Functor, ceres::TAKE_OWNERSHIP, nd);
+  reference.AddParameterBlock(kParameters);
+  reference.SetNumResiduals(kResiduals);
+  const std::vector<double> expected = jacobian_of(reference, u);
+
+  const cc::ForwardDifferenceCost serial(model, kParameters, kResiduals, 1e-5, nullptr);
+  EXPECT_EQ(jacobian_of(serial, u), expected);
+  cc::SpareCores spare;
+  spare.lend();
+  const cc::ForwardDifferenceCost two_threads(model, kParameters, kResiduals, 1e-5, &spare);
+  EXPECT_EQ(jacobian_of(two_threads, u), expected);
+  EXPECT_TRUE(spare.borrow()) << "the core is given back after the Jacobian";
+
+  double largest = 0.0;
+  for (int i = 0; i < kResiduals; ++i)
+    for (int j = 0; j < kParameters; ++j) largest = std::max(largest, std::abs(analytic(u.data(), i, j)));
+  for (int i = 0; i < kResiduals; ++i)
+    for (int j = 0; j < kParameters; ++j)
+      EXPECT_NEAR(expected[i * kParameters + j], analytic(u.data(), i, j), 1e-4 * largest) << i << ", " << j;
+}
+
+TEST(ForwardDifferenceCost, AFailingRunFailsTheEvaluation) {
+  auto fails_off_start = [](const double* u, double* r) {
+    for (int i = 0; i < kResiduals; ++i) r[i] = u[0];
+    return u[1] == 1.0;  // any step in u_1 fails
+  };
+  cc::SpareCores spare;
+  spare.lend();
+  const cc::ForwardDifferenceCost cost(fails_off_start, 2, kResiduals, 1e-5, &spare);
+  const std::vector<double> u = {0.5, 1.0};
+  std::vector<double> r(kResiduals), J(kResiduals * 2);
+  const double* p[] = {u.data()};
+  double* j[] = {J.data()};
+  EXPECT_TRUE(cost.Evaluate(p, r.data(), nullptr));
+  EXPECT_FALSE(cost.Evaluate(p, r.data(), j));
+}
+
+TEST(ParallelJobs, ParallelForCallsEachIndexOnceAndRunAllKeepsJobOrder) {
+  cc::SpareCores spare;
+  spare.lend();
+  std::vector<std::atomic<int>> calls(100);
+  cc::parallel_for(calls.size(), &spare, [&](std::size_t i) { ++calls[i]; });
+  for (const auto& c : calls) EXPECT_EQ(c.load(), 1);
+
+  std::vector<std::function<int()>> jobs;
+  for (int k = 0; k < 9; ++k) jobs.push_back([k] { return k * k; });
+  const std::vector<double> cost = {1, 9, 2, 8, 3, 7, 4, 6, 5};  // started longest first, returned in job order
+  cc::SpareCores stage;
+  const std::vector<int> out = cc::run_all(jobs, 2, cost, &stage);
+  for (int k = 0; k < 9; ++k) EXPECT_EQ(out[k], k * k);
+  EXPECT_FALSE(stage.borrow()) << "no core stays lent once the stage has ended";
+}
