@@ -4,11 +4,10 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <iomanip>
 #include <functional>
+#include <iomanip>
 #include <limits>
 #include <sstream>
-#include <thread>
 
 #include <ceres/ceres.h>
 
@@ -224,24 +223,12 @@ double keep_best(const CandidateModel& m, std::vector<double>& u, const std::vec
   return best;
 }
 
-/// Tries every combination of the values of the parameters `which` (each its own u and its scan_values; the others
-/// held) and keeps the best in u (keep_best).
-double scan_jointly(const CandidateModel& m, std::vector<double>& u, const std::vector<std::size_t>& which, double best,
-                    SpareCores* spare) {
-  std::vector<std::vector<double>> values;
-  for (std::size_t i : which) {
-    values.push_back(scan_values(m.free()[i], u[i]));
-    values.back().insert(values.back().begin(), u[i]);
-  }
+/// The scan_values of parameter i tried (the others held), the best kept in u (keep_best).
+double scan_parameter(const CandidateModel& m, std::vector<double>& u, std::size_t i, double best, SpareCores* spare) {
   std::vector<std::vector<double>> trials;
-  std::vector<double> trial = u;
-  std::vector<std::size_t> at(which.size(), 0);
-  for (;;) {
-    std::size_t k = 0;  // next combination (odometer); the all-current one was evaluated by the caller
-    while (k < at.size() && ++at[k] == values[k].size()) at[k++] = 0;
-    if (k == at.size()) break;
-    for (std::size_t j = 0; j < which.size(); ++j) trial[which[j]] = values[j][at[j]];
-    trials.push_back(trial);
+  for (double t : scan_values(m.free()[i], u[i])) {
+    trials.push_back(u);
+    trials.back()[i] = t;
   }
   return keep_best(m, u, trials, best, spare);
 }
@@ -272,7 +259,7 @@ std::vector<double> scan_start(const CandidateModel& m, std::vector<double> u, S
   const bool held_base = scan == Scan::effect && !effect.empty();
   double best = m.chi2_at(u.data());
   for (std::size_t i = 0; i < u.size(); ++i)
-    if (!held_base || !m.free()[i].is_base()) best = scan_jointly(m, u, {i}, best, spare);
+    if (!held_base || !m.free()[i].is_base()) best = scan_parameter(m, u, i, best, spare);
   refine_start(m, u, effect, best, spare);
   return u;
 }
@@ -694,7 +681,7 @@ std::vector<std::size_t> pair_sources(const std::vector<CandidateFit>& fits, con
 /// Pairs of the best single with each of the next best, started from their single fits (a pair without the best single
 /// was never within strong_evidence of the best pair: bench seed 2025, session-14 code, 20 campaigns with three pairs,
 /// dBIC 151 to 4643 below it, and the slowest of the three in 7); a joint pair starts from the better
-/// single's refitted base, so that it starts where that single ended, and then scans each parameter (the second
+/// single's refitted base, so that it starts where that single ended, and then scans the effects' parameters (the second
 /// effect's parameters were fitted with another base and both effects explain part of the same residual, so the
 /// plain sum can start far worse than either single: measured on a foreign stiffness-proportional campaign,
 /// stiffness_damping + pneumatic ended at dBIC -1198 after 955 runs and 65 s without the scan).
@@ -703,20 +690,20 @@ std::vector<CandidateFit> fit_pairs(const CandidateJobs& c, const std::vector<Ca
   const bool joint = c.options.joint_base && c.base_ref();
   std::vector<std::function<CandidateFit()>> jobs;
   std::vector<double> expected_seconds;  // a pair costs about what its two singles cost together
-  for (std::size_t a = 0; a < std::min<std::size_t>(top.size(), 1); ++a)
-    for (std::size_t b = a + 1; b < top.size(); ++b) {
-      expected_seconds.push_back(fits[top[a]].seconds + fits[top[b]].seconds);
-      std::vector<material::EffectSpec> e = fits[top[a]].effects;
-      e.push_back(fits[top[b]].effects.front());
-      if (!joint) {
-        jobs.push_back(c.job(e, Scan::none, false));
-        continue;
-      }
-      jobs.push_back([&c, e, base = base_of(fits[top[a]])] {
-        return fit_candidate(base, e, c.campaign, c.d.noise, c.d.residuals, c.d.baseline_bic, c.options, Scan::effect,
-                             true, &c.spare);
-      });
+  for (std::size_t b = 1; b < top.size(); ++b) {
+    const CandidateFit& best = fits[top.front()];
+    expected_seconds.push_back(best.seconds + fits[top[b]].seconds);
+    std::vector<material::EffectSpec> e = best.effects;
+    e.push_back(fits[top[b]].effects.front());
+    if (!joint) {
+      jobs.push_back(c.job(e, Scan::none, false));
+      continue;
     }
+    jobs.push_back([&c, e, base = base_of(best)] {
+      return fit_candidate(base, e, c.campaign, c.d.noise, c.d.residuals, c.d.baseline_bic, c.options, Scan::effect,
+                           true, &c.spare);
+    });
+  }
   std::vector<CandidateFit> pairs = run_all(jobs, c.options.threads, expected_seconds, &c.spare);
   for (const auto& f : pairs) log_fit(log, f, false);
   return pairs;
