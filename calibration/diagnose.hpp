@@ -25,7 +25,8 @@
 ///     (compare.hpp normalised_residuals). Candidates run on `threads` threads, longest pairs first; a thread with no
 ///     candidate left lends its core to the Jacobians and start scans of those still running (parallel_jobs.hpp).
 ///  3. Pairs (only when the best single leaves some test beyond noise): the best single combined with each of the
-///     next `pairs_from` - 1, started from their single fits.
+///     next `pairs_from` - 1, started from their single fits (the best single's base), the start scan over the added
+///     effect's parameters only (the best single's effect held at its fit).
 ///  4. Penalised figure: BIC = chi2 + k ln N (chi2: sum of squared noise-normalised residuals, N their
 ///     number, k the fitted parameters); dBIC = BIC_baseline - BIC_candidate (> 0: better). A candidate
 ///     is SUPPORTED when dBIC > strong_evidence (Kass & Raftery: > 10 is very strong) AND it beats by
