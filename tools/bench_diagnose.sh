@@ -7,7 +7,11 @@
 #        PROTOCOL (recorded|unrecorded, default recorded; unrecorded: each campaign runs its own dynamic protocol and
 #        leaves its keys out of the manifest), DIAGNOSE_ARGS (more options of every diagnose call, e.g. --assume-protocol),
 #        GENERATOR_ARGS (more options of the generator, e.g. "--extra-rate 3000": a test diagnose proposed to separate
-#        two explanations, added to every campaign with the truth unchanged)
+#        two explanations, added to every campaign with the truth unchanged), BASE_REFIT (none|report|scale, default
+#        none: the generator's --base-refit; report: truth.json also says what a refitted base of the generator's OWN
+#        family leaves of the effects, and the summary splits the effect campaigns by it; scale: every effect sized so
+#        that what that refit leaves of it is 14-36x noise, i.e. visible in these tests by a measure independent of
+#        cushion)
 #
 # The campaigns come from build/tests/foreign_campaigns (tests/foreign: a 1D test machine with its own
 # foam and effect forms, independent of cushion's material/ and calibration/). Each is run through the
@@ -33,6 +37,7 @@ DYNAMIC_NOISE=${DYNAMIC_NOISE:-amplitude}
 PROTOCOL=${PROTOCOL:-recorded}
 DIAGNOSE_ARGS=${DIAGNOSE_ARGS:-}
 GENERATOR_ARGS=${GENERATOR_ARGS:-}
+BASE_REFIT=${BASE_REFIT:-none}
 (( JOBS >= 1 && JOBS <= 2 )) || { echo "JOBS must be 1 or 2 (2 cores)" >&2; exit 2; }
 
 nice -n 5 cmake --build build --target cushion foreign_campaigns -j2 >/dev/null
@@ -44,7 +49,7 @@ rm -rf "$OUT/campaigns"
 echo "bench_diagnose: generating $N campaigns (seed $SEED, $PAIRS pairs, $CONTROLS controls) in $OUT/campaigns"
 # shellcheck disable=SC2086  # GENERATOR_ARGS: words
 "$GENERATOR" --out "$OUT/campaigns" --count "$N" --seed "$SEED" --pairs "$PAIRS" --controls "$CONTROLS" \
-  --dynamic-noise "$DYNAMIC_NOISE" --protocol "$PROTOCOL" $GENERATOR_ARGS > "$OUT/generator.log"
+  --dynamic-noise "$DYNAMIC_NOISE" --protocol "$PROTOCOL" --base-refit "$BASE_REFIT" $GENERATOR_ARGS > "$OUT/generator.log"
 
 # One campaign: `cushion diagnose CAMP/campaign.json` (no material: the base is fitted first into CAMP/diag/fit,
 # then every candidate jointly with it); CAMP/bench_status.txt holds "status fit_s diagnose_s" (fit_s is 0: the
@@ -108,9 +113,10 @@ for line in csv.DictReader(open(os.path.join(out, "campaigns", "index.csv"))):
         right = named[0] == true[0]                      # the true family ranked first
     else:
         right = sorted(named) == sorted(true)            # both families of a pair
+    left = truth.get("after_base_refit", {}).get("largest")  # what the generator's own base refit leaves (report|scale)
     rows.append(dict(campaign=line["campaign"], truth=label, forms=line["forms"], base=truth["base"]["family"],
                      verdict="+".join(named), rival="+".join(rival) or "-", right=right, baseline_error_over_noise=baseline,
-                     after_error_over_noise=after, seconds=seconds))
+                     after_error_over_noise=after, seconds=seconds, left_by_foreign_refit=left))
 
 def kind(label):
     return "control" if label == "control" else ("pair" if "+" in label else "single")
@@ -163,6 +169,16 @@ if effect_rows:
     p(f"effects the fitted base leaves beyond 1.5x noise (visible in these tests): {len(seen)}/{len(effect_rows)}, "
       f"right among them {sum(r['right'] for r in seen)}/{len(seen)}; absorbed by the fitted base (<= 1.5x): "
       f"{len(effect_rows) - len(seen)}, of them 'none' {sum(r['verdict'] == 'none' for r in effect_rows if r not in seen)}")
+# The same split by a measure independent of cushion (BASE_REFIT report or scale): what a base of the generator's own
+# family, refitted to the noise-free records, leaves of the effects (truth.json after_base_refit): beyond 3x noise the
+# effects are visible in these tests whatever base one fits.
+left = [r for r in effect_rows if r["left_by_foreign_refit"] is not None]
+if left:
+    vis = [r for r in left if r["left_by_foreign_refit"] > 3.0]
+    p(f"effects a refitted base of the generator's own family leaves beyond 3x noise: {len(vis)}/{len(left)}, right among "
+      f"them {sum(r['right'] for r in vis)}/{len(vis)} (singles {sum(r['right'] for r in vis if kind(r['truth']) == 'single')}/"
+      f"{sum(kind(r['truth']) == 'single' for r in vis)}); at most 3x: {len(left) - len(vis)}, right among them "
+      f"{sum(r['right'] for r in left if r not in vis)}")
 # A verdict that names a winner may add that another candidate explains the data as well (diagnose's rival, with
 # the test that would separate them): the true family is then at least put before the user.
 singles = [r for r in rows if kind(r["truth"]) == "single"]
@@ -187,11 +203,12 @@ secs = [r["seconds"] for r in rows]
 p(f"time per campaign (fit + diagnose): mean {statistics.mean(secs):.1f} s, max {max(secs):.1f} s")
 p("")
 p("Per campaign:")
-p(f"{'campaign':9s} {'truth':40s} {'forms':34s} {'base':16s} {'verdict':36s} ok   err/noise before -> after   s      rival")
+p(f"{'campaign':9s} {'truth':40s} {'forms':34s} {'base':16s} {'verdict':36s} ok   err/noise before -> after   s      "
+  f"rival{'  left by the foreign refit' if left else ''}")
 for r in rows:
     p(f"{r['campaign']:9s} {r['truth']:40s} {r['forms']:34s} {r['base']:16s} {r['verdict']:36s} "
       f"{'yes' if r['right'] else 'no ':3s}  {fmt(r['baseline_error_over_noise']):>8s} -> {fmt(r['after_error_over_noise']):8s} "
-      f"{r['seconds']:6.1f}  {r['rival']}")
+      f"{r['seconds']:6.1f}  {r['rival']}" + (f"  {fmt(r['left_by_foreign_refit'])}" if left else ""))
 text = "\n".join(lines) + "\n"
 open(os.path.join(out, "summary.txt"), "w").write(text)
 print(text, end="")

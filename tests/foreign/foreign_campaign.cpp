@@ -20,55 +20,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct PlanRecords {
-  std::vector<QuasiStaticRecord> quasi_static;
-  std::vector<DynamicRecord> dynamic;
-};
-
-PlanRecords simulate_noise_free(const BaseFoam& foam, const std::vector<EffectSpec>& effects, const TestPlan& plan) {
-  PlanRecords r;
-  for (const auto& p : plan.quasi_static) r.quasi_static.push_back(run_quasi_static(foam, effects, plan.specimen, p));
-  for (const auto& p : plan.dynamic) r.dynamic.push_back(run_dynamic(foam, effects, plan.specimen, p, plan.noise, nullptr));
-  return r;
-}
-
-double rms(const std::vector<double>& v) {
-  double s = 0.0;
-  for (double x : v) s += x * x;
-  return v.empty() ? 0.0 : std::sqrt(s / v.size());
-}
-
-double quasi_static_ratio(const QuasiStaticRecord& base, const QuasiStaticRecord& with, const NoiseModel& noise) {
-  const std::size_t n = std::min(base.force_N.size(), with.force_N.size());
-  std::vector<double> difference_N(n), sd_N(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    difference_N[k] = with.force_N[k] - base.force_N[k];
-    sd_N[k] = noise.force_sd_N(base.force_N[k]);
-  }
-  return rms(difference_N) / rms(sd_N);
-}
-
-double dynamic_ratio(const DynamicRecord& base, const DynamicRecord& with) {
-  const std::size_t n = base.frequency_Hz.size();
-  std::vector<double> d_modulus(n), sd_modulus(n), d_phase(n), sd_phase(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    d_modulus[i] = with.dynamic_modulus_kPa[i] - base.dynamic_modulus_kPa[i];
-    d_phase[i] = with.phase_deg[i] - base.phase_deg[i];
-    sd_modulus[i] = base.modulus_sd_kPa(i);
-    sd_phase[i] = base.phase_sd_deg(i);
-  }
-  return std::max(rms(d_modulus) / rms(sd_modulus), rms(d_phase) / rms(sd_phase));
-}
-
-std::map<std::string, double> ratios_between(const PlanRecords& base, const PlanRecords& with, const TestPlan& plan) {
-  std::map<std::string, double> out;
-  for (std::size_t i = 0; i < plan.quasi_static.size(); ++i)
-    out[plan.quasi_static[i].name] = quasi_static_ratio(base.quasi_static[i], with.quasi_static[i], plan.noise);
-  for (std::size_t i = 0; i < plan.dynamic.size(); ++i)
-    out[plan.dynamic[i].name] = dynamic_ratio(base.dynamic[i], with.dynamic[i]);
-  return out;
-}
-
 std::string join(const std::vector<std::string>& items, const std::string& separator) {
   std::string s;
   for (std::size_t i = 0; i < items.size(); ++i) s += (i ? separator : "") + items[i];
@@ -226,7 +177,25 @@ EffectSpec scale_effect(EffectSpec shape, const BaseFoam& foam, const TestPlan& 
   throw std::runtime_error(form.family + "/" + form.form + ": scaling did not converge");
 }
 
-CampaignTruth draw_truth(const std::string& name, const CampaignKind& kind, std::uint64_t seed, const TestPlan& plan) {
+EffectSpec scale_effect_beyond_base_refit(EffectSpec shape, const BaseFoam& foam, const TestPlan& plan, double target) {
+  const EffectForm& form = find_form(shape.family, shape.form);
+  EffectSpec effect = scale_effect(std::move(shape), foam, plan, target);
+  BaseFoam start = foam;
+  for (int round = 0; round < 8; ++round) {
+    const BaseRefit refit = refit_base(foam, {effect}, plan, &start);
+    const double left = largest(refit.ratio_after);
+    if (std::abs(std::log(left / target)) < std::log(1.25)) return effect;
+    double& magnitude = effect.parameters[form.magnitude];
+    if (magnitude >= form.magnitude_hi && left < target) break;
+    magnitude = std::clamp(magnitude * target / std::max(left, 1e-3), form.magnitude_lo, form.magnitude_hi);
+    start = refit.base;
+  }
+  throw std::runtime_error(form.family + "/" + form.form + ": what a refitted base leaves cannot reach " +
+                           std::to_string(target) + " x noise within the magnitude range");
+}
+
+CampaignTruth draw_truth(const std::string& name, const CampaignKind& kind, std::uint64_t seed, const TestPlan& plan,
+                         BaseRefitUse refit) {
   CampaignTruth truth;
   truth.name = name;
   truth.seed = seed;
@@ -236,12 +205,27 @@ CampaignTruth draw_truth(const std::string& name, const CampaignKind& kind, std:
     Random random(mix_seed(seed, 1 + k));
     const EffectForm& form = find_form(kind.families[k], kind.forms[k]);
     const double target = random.log_uniform(14.0, 36.0);
-    EffectSpec effect = scale_effect(draw_effect_shape(form, truth.base, random), truth.base, plan, target);
+    EffectSpec effect;
+    for (int draw = 0;; ++draw) {  // scale: a shape whose refit-proof part cannot reach the target is drawn again
+      try {
+        effect = refit == BaseRefitUse::scale
+                     ? scale_effect_beyond_base_refit(draw_effect_shape(form, truth.base, random), truth.base, plan, target)
+                     : scale_effect(draw_effect_shape(form, truth.base, random), truth.base, plan, target);
+        break;
+      } catch (const std::runtime_error&) {
+        if (refit != BaseRefitUse::scale || draw == 7) throw;
+      }
+    }
     truth.effect_over_noise[effect.family] = effect_over_noise(truth.base, {effect}, plan);
+    if (refit != BaseRefitUse::none)
+      truth.effect_after_base_refit[effect.family] = refit_base(truth.base, {effect}, plan).ratio_after;
     add_derived_parameters(effect);
     truth.equations.push_back(form.equation);
     truth.effects.push_back(effect);
   }
+  if (refit != BaseRefitUse::none)
+    truth.all_effects_after_base_refit = truth.effects.empty() ? std::map<std::string, double>{}
+                                                               : refit_base(truth.base, truth.effects, plan).ratio_after;
   return truth;
 }
 
@@ -309,8 +293,17 @@ void write_campaign(const CampaignTruth& truth, const TestPlan& plan, const fs::
     nlohmann::json p{{"form", e.form}, {"equation", truth.equations[k]}};
     for (const auto& [key, value] : e.parameters) p[key] = value;
     p["effect_over_noise"] = truth.effect_over_noise.at(e.family);
+    if (truth.effect_after_base_refit.count(e.family))
+      p["after_base_refit"] = truth.effect_after_base_refit.at(e.family);
     t["parameters"][e.family] = p;
   }
+  if (!truth.all_effects_after_base_refit.empty())
+    t["after_base_refit"] = {
+        {"what", "per test, what a base of the generator's own family (term counts of the truth's base, every mu_i, "
+                 "alpha_i, Prony a_j and tau_j refitted by Levenberg-Marquardt on the noise-free records) leaves of "
+                 "all the effects together, in noise units (RMS difference over RMS noise)"},
+        {"ratios", truth.all_effects_after_base_refit},
+        {"largest", largest(truth.all_effects_after_base_refit)}};
   if (plan.unrecorded_protocol && !plan.dynamic.empty()) {
     const DynamicProtocol& d = plan.dynamic.front();
     t["protocol"] = {{"recorded", false}, {"cycles", d.cycles}, {"fit_cycles", d.fit_cycles},
@@ -360,7 +353,7 @@ std::vector<CampaignKind> campaign_mix(int count, int pairs, int controls, std::
 }
 
 void write_campaign_set(const fs::path& dir, int count, int pairs, int controls, std::uint64_t seed,
-                        const TestPlan& plan, std::ostream& log) {
+                        const TestPlan& plan, std::ostream& log, BaseRefitUse refit) {
   fs::create_directories(dir);
   const std::vector<CampaignKind> kinds = campaign_mix(count, pairs, controls, seed);
   std::ofstream index(dir / "index.csv");
@@ -371,7 +364,7 @@ void write_campaign_set(const fs::path& dir, int count, int pairs, int controls,
     name << "c" << std::setw(3) << std::setfill('0') << i;
     Random protocol_random(mix_seed(mix_seed(seed, i), 4242));
     const TestPlan campaign_plan = plan.unrecorded_protocol ? drawn_protocol(plan, protocol_random) : plan;
-    const CampaignTruth truth = draw_truth(name.str(), kinds[i], mix_seed(seed, i), campaign_plan);
+    const CampaignTruth truth = draw_truth(name.str(), kinds[i], mix_seed(seed, i), campaign_plan, refit);
     write_campaign(truth, campaign_plan, dir / name.str());
     const std::string families = kinds[i].families.empty() ? "control" : join(kinds[i].families, "+");
     const std::string forms = kinds[i].forms.empty() ? "-" : join(kinds[i].forms, "+");
@@ -381,6 +374,8 @@ void write_campaign_set(const fs::path& dir, int count, int pairs, int controls,
         << std::setprecision(3) << truth.base.density_kg_m3 << " kg/m3, s_e(50%) "
         << truth.base.elastic_stress_kPa(0.5) << " kPa";
     for (const auto& [family, ratios] : truth.effect_over_noise) log << ", " << family << " " << largest(ratios) << "x noise";
+    if (!truth.all_effects_after_base_refit.empty())
+      log << ", " << largest(truth.all_effects_after_base_refit) << "x after a base refit";
     log << " (" << seconds << " s)\n";
   }
   if (!index) throw std::runtime_error("error writing " + (dir / "index.csv").string());

@@ -18,30 +18,14 @@
 #include <string>
 #include <vector>
 
+#include "foreign_base_refit.hpp"
 #include "foreign_effects.hpp"
 #include "foreign_foam.hpp"
 #include "foreign_machine.hpp"
+#include "foreign_plan.hpp"
 
 namespace foreign_bench {
 
-struct TestPlan {
-  Specimen specimen;
-  NoiseModel noise;
-  std::vector<QuasiStaticProtocol> quasi_static;
-  std::vector<DynamicProtocol> dynamic;
-  /// The manifest leaves out the dynamic protocol keys (cycles, fit_cycles, preload_rate_mm_min,
-  /// dwell_before_sweep_s, amplitude_convention) and each campaign runs its own (drawn_protocol); truth.json
-  /// records what was run. false: the standard protocol, every key recorded.
-  bool unrecorded_protocol = false;
-  /// With unrecorded_protocol: the written acceleration_amplitude_m_s2 is the PEAK amplitude (half the
-  /// peak-to-peak one the machine ran), as a lab that says "amplitude" for the peak writes it. Per campaign.
-  bool amplitude_written_as_peak = false;
-  /// Tests written besides the plan's (the test diagnose proposes to separate two explanations), each with its own
-  /// noise stream from 200 on: the truth is drawn and scaled on the plan's tests only, so a campaign with extra tests
-  /// has the same truth and the same records of the plan's tests as without.
-  std::vector<QuasiStaticProtocol> extra_quasi_static;
-  std::vector<DynamicProtocol> extra_dynamic;
-};
 
 /// An extra quasi-static test at `rate_mm_min` (validation, sampled every 0.2 mm, at least 10 Hz) and an extra dynamic
 /// sweep at `preload_strain` (the plan's first sweep otherwise), named qs_RATE / dyn_PRELOAD_extra.
@@ -70,6 +54,20 @@ double largest(const std::map<std::string, double>& ratios);
 /// alone is `target` x the noise in its most sensitive test (accepted within a factor 1.25).
 EffectSpec scale_effect(EffectSpec shape, const BaseFoam& foam, const TestPlan& plan, double target);
 
+/// Rescales the magnitude so that what a refitted base of the generator's own family leaves of the effect
+/// (foreign_base_refit.hpp) is `target` x the noise in its most sensitive test (within a factor 1.25): first against
+/// the true base (scale_effect), then the magnitude times target/left, the refit started where the last one ended.
+/// Throws when the range cannot reach it.
+EffectSpec scale_effect_beyond_base_refit(EffectSpec shape, const BaseFoam& foam, const TestPlan& plan, double target);
+
+/// What the generator says of each effect besides its size against the true base (--base-refit):
+///   none    nothing more (the default: fast, the campaigns of earlier sessions unchanged);
+///   report  truth.json also records what a refitted base of the generator's own family leaves of each effect and
+///           of all of them together ("after_base_refit"), the effects scaled as before;
+///   scale   each effect scaled so that what the refitted base leaves of it is 14-36 x noise (a shape that cannot
+///           reach that is drawn again, up to 8 times), and reported as with report.
+enum class BaseRefitUse { none, report, scale };
+
 struct CampaignKind {
   std::vector<std::string> families, forms;  ///< empty: control
 };
@@ -81,11 +79,16 @@ struct CampaignTruth {
   std::vector<EffectSpec> effects;
   std::vector<std::string> equations;                          ///< per effect
   std::map<std::string, std::map<std::string, double>> effect_over_noise;  ///< family -> test -> ratio
+  /// With BaseRefitUse report or scale: family -> test -> what a refitted base leaves of that effect alone, and
+  /// test -> what it leaves of all the effects together (empty otherwise).
+  std::map<std::string, std::map<std::string, double>> effect_after_base_refit;
+  std::map<std::string, double> all_effects_after_base_refit;
 };
 
 /// Seeded truth of a kind: base family drawn, each effect drawn and scaled alone to a target
 /// log-uniform in 14..36 x noise.
-CampaignTruth draw_truth(const std::string& name, const CampaignKind& kind, std::uint64_t seed, const TestPlan& plan);
+CampaignTruth draw_truth(const std::string& name, const CampaignKind& kind, std::uint64_t seed, const TestPlan& plan,
+                         BaseRefitUse refit = BaseRefitUse::none);
 
 /// Writes DIR/campaign.json, the CSV files and DIR/truth.json (DIR created, overwritten).
 void write_campaign(const CampaignTruth& truth, const TestPlan& plan, const std::filesystem::path& dir);
@@ -96,6 +99,6 @@ std::vector<CampaignKind> campaign_mix(int count, int pairs, int controls, std::
 
 /// Writes the whole set: DIR/c000 ... and DIR/index.csv (campaign, families, forms); logs one line each.
 void write_campaign_set(const std::filesystem::path& dir, int count, int pairs, int controls, std::uint64_t seed,
-                        const TestPlan& plan, std::ostream& log);
+                        const TestPlan& plan, std::ostream& log, BaseRefitUse refit = BaseRefitUse::none);
 
 }  // namespace foreign_bench

@@ -1,6 +1,7 @@
 // foreign_campaigns --out DIR --count N --seed S [--pairs P] [--controls C] [--dynamic-noise amplitude|reading]
 //                   [--protocol recorded|unrecorded]
 //                   [--extra-rate MM_MIN]... [--extra-preload STRAIN]... [--extra-hold S]...
+//                   [--base-refit none|report|scale]
 // Test-data generation for the diagnose benchmark (issue 15), independent of cushion's material/ and
 // calibration/: writes N seeded campaigns DIR/c000 ... in cushion's campaign format, each with truth.json,
 // and DIR/index.csv. Defaults: P = C = round(N/6). Deterministic for a seed.
@@ -21,20 +22,24 @@ int usage(const std::string& message) {
       << "usage: foreign_campaigns --out DIR --count N --seed S [--pairs P] [--controls C]\n"
          "                         [--dynamic-noise amplitude|reading] [--protocol recorded|unrecorded]\n"
          "                         [--extra-rate MM_MIN]... [--extra-preload STRAIN]... [--extra-hold S]...\n"
+         "                         [--base-refit none|report|scale]\n"
          "  N campaigns DIR/c000... (P with two effect families, C controls without effect, the rest one\n"
          "  family each, balanced over families and forms), each campaign.json + CSV + truth.json, and\n"
          "  DIR/index.csv. Defaults: P = C = round(N/6); dynamic noise relative to the oscillating force;\n"
          "  protocol recorded (unrecorded: each campaign runs its own dynamic protocol, keys left out).\n"
          "  --extra-rate / --extra-preload / --extra-hold: one more quasi-static test at that rate / dynamic sweep\n"
          "  at that preload / 120 mm/min test holding S seconds at the peak in every campaign (validation), the\n"
-         "  truth and the other records unchanged.\n";
+         "  truth and the other records unchanged.\n"
+         "  --base-refit: report also records in truth.json what a refitted base of the generator's own family\n"
+         "  leaves of the effects; scale sizes each effect by that instead of by its difference from the true\n"
+         "  base (default none).\n";
   return message.empty() ? 0 : 2;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string out, dynamic_noise = "amplitude", protocol = "recorded";
+  std::string out, dynamic_noise = "amplitude", protocol = "recorded", base_refit = "none";
   long count = -1, pairs = -1, controls = -1;
   long long seed = -1;
   std::vector<double> extra_rates, extra_preloads, extra_holds;
@@ -51,6 +56,7 @@ int main(int argc, char** argv) {
       else if (a == "--controls") controls = std::stol(v);
       else if (a == "--dynamic-noise") dynamic_noise = v;
       else if (a == "--protocol") protocol = v;
+      else if (a == "--base-refit") base_refit = v;
       else if (a == "--extra-rate")
         extra_rates.push_back(std::stod(v));
       else if (a == "--extra-preload")
@@ -65,6 +71,8 @@ int main(int argc, char** argv) {
   if (out.empty() || count < 1 || seed < 0) return usage("--out, --count >= 1 and --seed >= 0 are required");
   if (dynamic_noise != "amplitude" && dynamic_noise != "reading") return usage("--dynamic-noise: amplitude or reading");
   if (protocol != "recorded" && protocol != "unrecorded") return usage("--protocol: recorded or unrecorded");
+  if (base_refit != "none" && base_refit != "report" && base_refit != "scale")
+    return usage("--base-refit: none, report or scale");
   for (double r : extra_rates)
     if (!(r > 0.0 && r <= 1e5)) return usage("--extra-rate: a crosshead rate in (0, 1e5] mm/min");
   for (double p : extra_preloads)
@@ -81,7 +89,10 @@ int main(int argc, char** argv) {
     for (double p : extra_preloads) plan.extra_dynamic.push_back(foreign_bench::extra_preload(plan, p));
     for (double h : extra_holds) plan.extra_quasi_static.push_back(foreign_bench::extra_hold(h));
     foreign_bench::write_campaign_set(out, static_cast<int>(count), static_cast<int>(pairs), static_cast<int>(controls),
-                                      static_cast<std::uint64_t>(seed), plan, std::cout);
+                                      static_cast<std::uint64_t>(seed), plan, std::cout,
+                                      base_refit == "scale"    ? foreign_bench::BaseRefitUse::scale
+                                      : base_refit == "report" ? foreign_bench::BaseRefitUse::report
+                                                               : foreign_bench::BaseRefitUse::none);
   } catch (const std::exception& e) {
     std::cerr << "foreign_campaigns: " << e.what() << "\n";
     return 1;
