@@ -186,7 +186,8 @@ EffectSpec scale_effect_beyond_base_refit(EffectSpec shape, const BaseFoam& foam
     const double left = largest(refit.ratio_after);
     if (std::abs(std::log(left / target)) < std::log(1.25)) return effect;
     double& magnitude = effect.parameters[form.magnitude];
-    if (magnitude >= form.magnitude_hi && left < target) break;
+    if (left < target && (magnitude >= form.magnitude_hi || largest(refit.ratio_before) > largest_effect_over_noise))
+      break;
     magnitude = std::clamp(magnitude * target / std::max(left, 1e-3), form.magnitude_lo, form.magnitude_hi);
     start = refit.base;
   }
@@ -206,16 +207,19 @@ CampaignTruth draw_truth(const std::string& name, const CampaignKind& kind, std:
     const EffectForm& form = find_form(kind.families[k], kind.forms[k]);
     const double target = random.log_uniform(14.0, 36.0);
     EffectSpec effect;
+    bool beyond_refit = refit == BaseRefitUse::scale;
     for (int draw = 0;; ++draw) {  // scale: a shape whose refit-proof part cannot reach the target is drawn again
       try {
-        effect = refit == BaseRefitUse::scale
+        effect = beyond_refit
                      ? scale_effect_beyond_base_refit(draw_effect_shape(form, truth.base, random), truth.base, plan, target)
                      : scale_effect(draw_effect_shape(form, truth.base, random), truth.base, plan, target);
         break;
       } catch (const std::runtime_error&) {
-        if (refit != BaseRefitUse::scale || draw == 7) throw;
+        if (!beyond_refit) throw;
+        if (draw == 3) beyond_refit = false;  // then sized against the true base, as without --base-refit
       }
     }
+    truth.sized_by[effect.family] = beyond_refit ? "what a refitted base leaves" : "the true base";
     truth.effect_over_noise[effect.family] = effect_over_noise(truth.base, {effect}, plan);
     if (refit != BaseRefitUse::none)
       truth.effect_after_base_refit[effect.family] = refit_base(truth.base, {effect}, plan).ratio_after;
@@ -293,8 +297,10 @@ void write_campaign(const CampaignTruth& truth, const TestPlan& plan, const fs::
     nlohmann::json p{{"form", e.form}, {"equation", truth.equations[k]}};
     for (const auto& [key, value] : e.parameters) p[key] = value;
     p["effect_over_noise"] = truth.effect_over_noise.at(e.family);
-    if (truth.effect_after_base_refit.count(e.family))
+    if (truth.effect_after_base_refit.count(e.family)) {
       p["after_base_refit"] = truth.effect_after_base_refit.at(e.family);
+      p["sized_against"] = truth.sized_by.at(e.family);
+    }
     t["parameters"][e.family] = p;
   }
   if (!truth.all_effects_after_base_refit.empty())

@@ -57,7 +57,9 @@ EffectSpec scale_effect(EffectSpec shape, const BaseFoam& foam, const TestPlan& 
 /// Rescales the magnitude so that what a refitted base of the generator's own family leaves of the effect
 /// (foreign_base_refit.hpp) is `target` x the noise in its most sensitive test (within a factor 1.25): first against
 /// the true base (scale_effect), then the magnitude times target/left, the refit started where the last one ended.
-/// Throws when the range cannot reach it.
+/// Throws when the range cannot reach it, or only with an effect beyond largest_effect_over_noise against the true base
+/// (an effect larger than the foam's own response, 0.5 % noise: not a seat foam).
+constexpr double largest_effect_over_noise = 200.0;
 EffectSpec scale_effect_beyond_base_refit(EffectSpec shape, const BaseFoam& foam, const TestPlan& plan, double target);
 
 /// What the generator says of each effect besides its size against the true base (--base-refit):
@@ -65,7 +67,8 @@ EffectSpec scale_effect_beyond_base_refit(EffectSpec shape, const BaseFoam& foam
 ///   report  truth.json also records what a refitted base of the generator's own family leaves of each effect and
 ///           of all of them together ("after_base_refit"), the effects scaled as before;
 ///   scale   each effect scaled so that what the refitted base leaves of it is 14-36 x noise (a shape that cannot
-///           reach that is drawn again, up to 8 times), and reported as with report.
+///           reach that is drawn again, 4 draws in all; then the effect is sized against the true base as without
+///           refit, and truth.json says so in "sized_against"), and reported as with report.
 enum class BaseRefitUse { none, report, scale };
 
 struct CampaignKind {
@@ -83,6 +86,7 @@ struct CampaignTruth {
   /// test -> what it leaves of all the effects together (empty otherwise).
   std::map<std::string, std::map<std::string, double>> effect_after_base_refit;
   std::map<std::string, double> all_effects_after_base_refit;
+  std::map<std::string, std::string> sized_by;  ///< family -> what its size was measured against (with BaseRefitUse)
 };
 
 /// Seeded truth of a kind: base family drawn, each effect drawn and scaled alone to a target

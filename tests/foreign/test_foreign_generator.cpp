@@ -175,6 +175,22 @@ TEST(ForeignBaseRefit, RateIndependentFrictionIsNotAbsorbedAndTheRefitNeverEndsA
             << largest(absorbed.ratio_after) << "x\n";
 }
 
+TEST(ForeignCampaign, ScaledBeyondTheBaseRefitAnAbsorbedMullinsFormIsLeftAt10To50TimesTheNoise) {
+  // Ogden-Roxburgh softening sized against the true base (campaign c002 of seed 2025: 18.6x noise) is mostly taken up
+  // by a refitted base (1.84x). Sized by what the refit leaves, the effect must grow beyond its size against the true
+  // base, and a fresh refit from the true base must leave 10-50x noise of it (the target 14-36x within the factor 1.25
+  // of the scaling and a refit started elsewhere).
+  const TestPlan plan = standard_plan();
+  const CampaignTruth truth =
+      draw_truth("t", {{"mullins"}, {"ogden_roxburgh"}}, mix_seed(2025, 2), plan, BaseRefitUse::scale);
+  ASSERT_EQ(truth.sized_by.at("mullins"), "what a refitted base leaves");
+  const double left = largest(truth.effect_after_base_refit.at("mullins"));
+  EXPECT_GE(left, 10.0);
+  EXPECT_LE(left, 50.0);
+  EXPECT_GT(largest(truth.effect_over_noise.at("mullins")), 2.0 * left);
+  EXPECT_NEAR(largest(truth.all_effects_after_base_refit), left, 1e-9 * left);
+}
+
 TEST(ForeignCampaign, MixIsBalancedAndDeterministic) {
   const auto kinds = campaign_mix(60, 10, 10, 5);
   const auto again = campaign_mix(60, 10, 10, 5);
