@@ -50,7 +50,7 @@ inline CubeTangent compressed_cube_tangent(int n) {
   for (std::size_t e = 0; e < t.c.m.num_elements(); ++e) section.elements.push_back(static_cast<int>(e));
   t.assembler = std::make_unique<solver::Assembler>(t.c.m, std::vector<solver::Section>{section},
                                                     solver::DofMap(t.c.m.num_nodes(), t.c.constrained),
-                                                    solver::AssemblyOptions{std::max(1u, std::thread::hardware_concurrency())});
+                                                    solver::AssemblyOptions{std::max(1u, std::thread::hardware_concurrency()), nullptr});
   solver::StateStore state = t.assembler->make_state_store();
   t.K = t.assembler->make_matrix();
   Eigen::VectorXd f;

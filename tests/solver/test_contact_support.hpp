@@ -30,7 +30,7 @@ ContactModel make_model(const mesh::BlockSpec& spec, std::shared_ptr<const mater
   Section s{"all", {}, std::move(mat), Formulation::full, 0.0};
   for (int e = 0; e < static_cast<int>(m.mesh.num_elements()); ++e) s.elements.push_back(e);
   m.assembler = std::make_unique<Assembler>(m.mesh, std::vector<Section>{s}, DofMap(m.mesh.num_nodes(), constrained),
-                                            AssemblyOptions{.num_threads = 2});
+                                            AssemblyOptions{.num_threads = 2, .distribution = nullptr});
   m.state = m.assembler->make_state_store();
   m.linear = make_linear_solver(kind);
   m.u = Eigen::VectorXd::Zero(3 * m.mesh.num_nodes());

@@ -64,7 +64,9 @@ class CliFit : public ::testing::Test {
     EXPECT_EQ(r.exit_code, 2) << r.output;
     EXPECT_NE(r.output.find("input error"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find(where), std::string::npos) << r.output;
-    if (!what.empty()) EXPECT_NE(r.output.find(what), std::string::npos) << r.output;
+    if (!what.empty()) {
+      EXPECT_NE(r.output.find(what), std::string::npos) << r.output;
+    }
     EXPECT_FALSE(fs::exists(out));
     EXPECT_FALSE(fs::exists(out.string() + ".partial"));
   }
