@@ -172,13 +172,13 @@ if effect_rows:
 # The same split by a measure independent of cushion (BASE_REFIT report or scale): what a base of the generator's own
 # family, refitted to the noise-free records, leaves of the effects (truth.json after_base_refit): beyond 3x noise the
 # effects are visible in these tests whatever base one fits.
-left = [r for r in effect_rows if r["left_by_foreign_refit"] is not None]
-if left:
-    vis = [r for r in left if r["left_by_foreign_refit"] > 3.0]
-    p(f"effects a refitted base of the generator's own family leaves beyond 3x noise: {len(vis)}/{len(left)}, right among "
+refit_rows = [r for r in effect_rows if r["left_by_foreign_refit"] is not None]
+if refit_rows:
+    vis = [r for r in refit_rows if r["left_by_foreign_refit"] > 3.0]
+    p(f"effects a refitted base of the generator's own family leaves beyond 3x noise: {len(vis)}/{len(refit_rows)}, right among "
       f"them {sum(r['right'] for r in vis)}/{len(vis)} (singles {sum(r['right'] for r in vis if kind(r['truth']) == 'single')}/"
-      f"{sum(kind(r['truth']) == 'single' for r in vis)}); at most 3x: {len(left) - len(vis)}, right among them "
-      f"{sum(r['right'] for r in left if r not in vis)}")
+      f"{sum(kind(r['truth']) == 'single' for r in vis)}); at most 3x: {len(refit_rows) - len(vis)}, right among them "
+      f"{sum(r['right'] for r in refit_rows if r not in vis)}")
 # A verdict that names a winner may add that another candidate explains the data as well (diagnose's rival, with
 # the test that would separate them): the true family is then at least put before the user.
 singles = [r for r in rows if kind(r["truth"]) == "single"]
@@ -204,11 +204,11 @@ p(f"time per campaign (fit + diagnose): mean {statistics.mean(secs):.1f} s, max 
 p("")
 p("Per campaign:")
 p(f"{'campaign':9s} {'truth':40s} {'forms':34s} {'base':16s} {'verdict':36s} ok   err/noise before -> after   s      "
-  f"rival{'  left by the foreign refit' if left else ''}")
+  f"rival{'  left by the foreign refit' if refit_rows else ''}")
 for r in rows:
     p(f"{r['campaign']:9s} {r['truth']:40s} {r['forms']:34s} {r['base']:16s} {r['verdict']:36s} "
       f"{'yes' if r['right'] else 'no ':3s}  {fmt(r['baseline_error_over_noise']):>8s} -> {fmt(r['after_error_over_noise']):8s} "
-      f"{r['seconds']:6.1f}  {r['rival']}" + (f"  {fmt(r['left_by_foreign_refit'])}" if left else ""))
+      f"{r['seconds']:6.1f}  {r['rival']}" + (f"  {fmt(r['left_by_foreign_refit'])}" if refit_rows else ""))
 text = "\n".join(lines) + "\n"
 open(os.path.join(out, "summary.txt"), "w").write(text)
 print(text, end="")

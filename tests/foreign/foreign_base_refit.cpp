@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <thread>
 
 #include <Eigen/Dense>
@@ -56,14 +55,12 @@ struct Problem {
   const BaseFoam& like;
   const PlanRecords& data;
   const TestPlan& plan;
-  const Eigen::VectorXd& start;
-  int runs = 0;
 
   Eigen::VectorXd residuals(const Eigen::VectorXd& theta) const {
     return normalised_differences(simulate_noise_free(unpack(like, theta), {}, plan), data, plan);
   }
   /// Forward differences, columns shared among the hardware threads (each run builds its own records).
-  Eigen::MatrixXd jacobian(const Eigen::VectorXd& theta, const Eigen::VectorXd& r0) {
+  Eigen::MatrixXd jacobian(const Eigen::VectorXd& theta, const Eigen::VectorXd& r0) const {
     Eigen::MatrixXd J(r0.size(), theta.size());
     const unsigned threads = std::max(1u, std::min<unsigned>(std::thread::hardware_concurrency(), 8u));
     auto column = [&](Eigen::Index k) {
@@ -78,7 +75,6 @@ struct Problem {
         for (Eigen::Index k = w; k < theta.size(); k += threads) column(k);
       });
     for (auto& t : pool) t.join();
-    runs += static_cast<int>(theta.size());
     return J;
   }
 };
@@ -90,12 +86,13 @@ BaseRefit refit_base(const BaseFoam& truth_base, const std::vector<EffectSpec>& 
   const PlanRecords data = simulate_noise_free(truth_base, effects, plan);
   const BaseFoam& from = start ? *start : truth_base;
   const Eigen::VectorXd theta0 = pack(from);
-  Problem problem{from, data, plan, theta0};
+  const Problem problem{from, data, plan};
   Eigen::VectorXd theta = theta0, r = problem.residuals(theta);
   double cost = r.squaredNorm(), lambda = 1e-3;
   BaseRefit out;
-  out.ratio_before = ratios_between(simulate_noise_free(truth_base, {}, plan), data, plan);
-  out.chi2_before = normalised_differences(simulate_noise_free(truth_base, {}, plan), data, plan).squaredNorm();
+  const PlanRecords truth_alone = simulate_noise_free(truth_base, {}, plan);
+  out.ratio_before = ratios_between(truth_alone, data, plan);
+  out.chi2_before = normalised_differences(truth_alone, data, plan).squaredNorm();
   int iteration = 0;
   for (; iteration < max_iterations; ++iteration) {
     const Eigen::MatrixXd J = problem.jacobian(theta, r);
@@ -111,7 +108,6 @@ BaseRefit refit_base(const BaseFoam& truth_base, const std::vector<EffectSpec>& 
       const Eigen::VectorXd candidate = theta + step;
       if (admissible(candidate, theta0, from.hyperfoam.size())) {
         const Eigen::VectorXd rc = problem.residuals(candidate);
-        ++problem.runs;
         if (rc.allFinite() && rc.squaredNorm() < cost) {
           theta = candidate, r = rc, new_cost = rc.squaredNorm(), accepted = true;
           lambda = std::max(lambda / 3.0, 1e-9);
@@ -129,7 +125,6 @@ BaseRefit refit_base(const BaseFoam& truth_base, const std::vector<EffectSpec>& 
   out.chi2_after = cost;
   out.ratio_after = ratios_between(simulate_noise_free(out.base, {}, plan), data, plan);
   out.iterations = iteration;
-  out.runs = problem.runs + 3;
   return out;
 }
 

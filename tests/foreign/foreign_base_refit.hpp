@@ -23,7 +23,7 @@ struct BaseRefit {
   std::map<std::string, double> ratio_before;   ///< per test: the effects over noise against the true base [-]
   std::map<std::string, double> ratio_after;    ///< per test: what the refitted base leaves, in noise units [-]
   double chi2_before = 0.0, chi2_after = 0.0;   ///< sums of squared noise-normalised differences [-]
-  int iterations = 0, runs = 0;
+  int iterations = 0;                           ///< Levenberg-Marquardt iterations taken
 };
 
 /// Refits `truth_base` (from `start`, the truth's base when null) to the noise-free plan records of truth_base +

@@ -227,9 +227,10 @@ CampaignTruth draw_truth(const std::string& name, const CampaignKind& kind, std:
     truth.equations.push_back(form.equation);
     truth.effects.push_back(effect);
   }
-  if (refit != BaseRefitUse::none)
-    truth.all_effects_after_base_refit = truth.effects.empty() ? std::map<std::string, double>{}
-                                                               : refit_base(truth.base, truth.effects, plan).ratio_after;
+  if (refit != BaseRefitUse::none && !truth.effects.empty())  // one effect: its own refit is the campaign's
+    truth.all_effects_after_base_refit = truth.effects.size() == 1
+                                             ? truth.effect_after_base_refit.at(truth.effects.front().family)
+                                             : refit_base(truth.base, truth.effects, plan).ratio_after;
   return truth;
 }
 
