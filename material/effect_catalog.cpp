@@ -38,8 +38,8 @@ struct Entry {
 const std::vector<Entry>& entries() {
   static const std::vector<Entry> table = {
       {{"pneumatic",
-        "air-flow (Darcy) damping through open cells: lumped extra pressure eta R^2/(8K(J)) (-dJ/dt)/J, "
-        "size-dependent through R",
+        "air-flow damping through open cells: lumped extra pressure eta R^2/(8K(J)) g(-(dJ/dt)/J), g(v) = "
+        "sign(v)|v|^q (q = 1: Darcy), size-dependent through R",
         {{"drainage_length_mm", "R: lateral drainage path, half the specimen width (case-dependent)", 40.0, 0.0, 1e4,
           true, false, false},
          {"permeability_mm2", "K0: permeability at J = 1 (1e-3 mm^2 = 1e-9 m^2)", 1e-3, 1e-9, 1e3, false, true, true},
@@ -49,9 +49,14 @@ const std::vector<Entry>& entries() {
          {"air_modulus_kPa",
           "M: stiffness of the air trapped in the cells (isothermal air at 1 atm: about 100 kPa), in series with the "
           "flow: a Maxwell branch of time eta R^2/(8 K M); 0: no trapped-air spring (Darcy dashpot)",
-          0.0, 0.0, 1e9, false, true, true, 100.0}}},
+          0.0, 0.0, 1e9, false, true, true, 100.0},
+         {"rate_exponent",
+          "q: flow law p = c(J) sign(v)|v|^q of the volumetric rate v [1/s]: 1 Darcy, < 1 resistance thinning with "
+          "rate, > 1 inertial (Forchheimer-like) losses",
+          1.0, 0.1, 3.0, false, false, false}}},
        [](const BuildContext& c) -> std::shared_ptr<const Material> {
          PneumaticParameters p;
+         p.rate_exponent = c.value.at("rate_exponent");
          p.drainage_length = c.value.at("drainage_length_mm");
          p.permeability = c.value.at("permeability_mm2");
          p.permeability_exponent = c.value.at("permeability_exponent");

@@ -22,9 +22,19 @@
 /// It is NOT a poroelastic (Biot) FE model: the pore pressure is not a field and does not diffuse
 /// between elements; R is a user/case parameter (half the specimen width or drainage path), which
 /// makes the model SIZE-DEPENDENT: a Prony series fitted on a small block misses it on a large one.
+/// Flow law (rate_exponent q, default 1: Darcy): the dashpot's pressure follows the volumetric rate v = -(dJ/dt)/J
+/// [1/s] as a power law, p = c(J) g(v), g(v) = v (v^2 + v_eps^2)^((q-1)/2) [1/s] with the reference rate 1/s
+/// (g = sign(v) |v|^q for |v| >> v_eps = 1e-4 /s, a regularisation that keeps the tangent finite at rest; q = 1: g = v
+/// exactly, Darcy). q < 1: a flow resistance that thins with rate (the air-flow dissipation of foams measured as a
+/// power law of the rate); q > 1: inertial (Forchheimer-like) losses growing faster than the rate. With the trapped-air
+/// spring the branch is M in series with this dashpot; the dashpot rate v_d is the root of the monotone
+///   c(J) g(v_d) - p_old - M (J_old/J - 1) + M dt v_d = 0,    p = c(J) g(v_d),
+/// solved by safeguarded Newton (docs/physics.md 5.1).
 /// Own state: the air pressure p [MPa] (one double). dt = 0 (an instantaneous response) adds no air stress and keeps p.
 /// Frequency domain about a relaxed base F_b (p_air = 0 there):
 ///   dS* = (i omega c(J_b) / (1 + i omega tau(J_b))) C_b^{-1} (x) C_b^{-1} : dE*   added to the inner tangent.
+/// A power-law flow (q != 1) has no amplitude-free small-amplitude tangent: complex_tangent throws
+/// std::invalid_argument (run the time-domain dynamic step instead).
 #include <limits>
 
 #include "material/effect_decorator.hpp"
@@ -38,7 +48,11 @@ struct PneumaticParameters {
   double permeability_exponent = 2;  ///< n_K [-], >= 0: K = K0 J^{n_K}
   double air_viscosity = 1.8e-11;    ///< eta_air [MPa s] (1.8e-5 Pa s), > 0
   double air_modulus = std::numeric_limits<double>::infinity();  ///< M [MPa], > 0; infinite: Darcy dashpot
+  double rate_exponent = 1.0;        ///< q [-], in [0.1, 3]: flow law p = c(J) g(v), g ~ sign(v)|v|^q; 1: Darcy
 };
+
+/// Regularisation rate v_eps [1/s] of the power-law flow g(v) = v (v^2 + v_eps^2)^((q-1)/2).
+inline constexpr double kPneumaticRestRate = 1e-4;
 
 class PneumaticEffect final : public EffectDecorator {
  public:
@@ -57,6 +71,14 @@ class PneumaticEffect final : public EffectDecorator {
   const PneumaticParameters& parameters() const { return p_; }
 
  private:
+  struct Pressure {
+    double p, dp_dJ;  ///< air pressure [MPa] at the increment's end and its derivative by J [MPa]
+  };
+  /// Linear flow (q = 1): closed form, dashpot or Maxwell.
+  Pressure darcy_pressure(double J, double J_old, double dt, double p_old) const;
+  /// Power-law flow (q != 1): dashpot, or Maxwell by Newton on the dashpot rate.
+  Pressure power_law_pressure(double J, double J_old, double dt, double p_old) const;
+
   PneumaticParameters p_;
 };
 

@@ -1,6 +1,8 @@
 // Checks of a case against its built mesh and material (case_file.hpp): everything that depends only
 // on the input files, raised before the first step runs.
 #include <algorithm>
+#include <numbers>
+#include <stdexcept>
 
 #include "io/input_error.hpp"
 #include "io/text_support.hpp"
@@ -66,6 +68,18 @@ void check_density(const LoadedCase& c, const StepSpec& step) {
                    c.spec.material_file.string() + ")");
 }
 
+/// A steady-state step linearises the material about its preload (Material::complex_tangent); a material without a
+/// small-amplitude tangent (a power-law air flow) is refused here, before anything is written.
+void check_linearisable(const LoadedCase& c, const StepSpec& step) {
+  if (step.type != StepSpec::Type::steady_state) return;
+  try {
+    c.material.model->complex_tangent(Mat3::Identity(), 2.0 * std::numbers::pi);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(c.spec.file.string() + ": " + step.steady_state.key + ": the steady_state step cannot linearise "
+                     "material \"" + c.material.spec.name + "\" (" + c.spec.material_file.string() + "): " + e.what());
+  }
+}
+
 }  // namespace
 
 void check_set_names(const CaseSpec& spec, const std::set<std::string>& node_sets) {
@@ -83,6 +97,7 @@ void check_loaded_case(const LoadedCase& loaded) {
   check_set_names(loaded.spec, names);
   for (const StepSpec& step : loaded.spec.steps) {
     check_density(loaded, step);
+    check_linearisable(loaded, step);
     if (step.type == StepSpec::Type::steady_state) check_steady_state_sets(loaded, step.steady_state);
   }
 }

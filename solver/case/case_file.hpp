@@ -39,7 +39,8 @@ struct LoadedCase {
 
 /// The checks that need the built mesh and material, run before the first step (nothing is written
 /// yet): the sets of steady-state steps are not empty and the measured set has a node driven or held
-/// in the excitation's dof; dynamic and steady-state steps have a material with a mass density.
+/// in the excitation's dof; dynamic and steady-state steps have a material with a mass density; a steady-state step's
+/// material has a small-amplitude complex tangent (not a power-law air flow).
 /// Throws InputError "<case>: <key.path>: <problem>".
 void check_loaded_case(const LoadedCase& loaded);
 

@@ -3,12 +3,15 @@
 // scales with R^2, has an exact increment tangent, and its complex tangent matches a time-domain sine. With a finite
 // air modulus M (trapped air in series with the flow) it is a Maxwell branch: the pressure relaxes under a hold with
 // tau(J) = c(J)/M (backward Euler exactly, the exponential to O(dt/tau)), a huge M gives back the dashpot, and the
-// complex tangent i w c/(1 + i w tau) matches a time-domain sine.
+// complex tangent i w c/(1 + i w tau) matches a time-domain sine. A power-law flow (rate exponent q != 1) gives
+// p = c(J) |v|^q at a constant volumetric rate v, relaxes under a hold as the closed form of dp/dt = -M (p/c)^(1/q),
+// has an exact increment tangent in both forms, and refuses a small-amplitude complex tangent.
 #include <gtest/gtest.h>
 
 #include <cstdio>
 
 #include <cmath>
+#include <limits>
 
 #include "material/effect_pneumatic.hpp"
 #include "tests/material/test_effect_support.hpp"
@@ -21,6 +24,13 @@ PneumaticParameters strong_air(double R = 40.0) {
   p.drainage_length = R;
   p.permeability = 1e-4;  // mm^2: coefficient eta R^2/(8 K0) = 3.6e-5 MPa s at R = 40 mm
   p.permeability_exponent = 2.0;
+  return p;
+}
+
+PneumaticParameters power_law_air(double q, double air_modulus_MPa = std::numeric_limits<double>::infinity()) {
+  PneumaticParameters p = strong_air();
+  p.rate_exponent = q;
+  p.air_modulus = air_modulus_MPa;
   return p;
 }
 
@@ -190,6 +200,93 @@ TEST(EffectPneumatic, TrappedAirComplexTangentMatchesTimeDomainSine) {
       EXPECT_LT(c.phase_deg(), d.phase_deg());
     }
   }
+}
+
+TEST(EffectPneumatic, PowerLawFlowTangentMatchesFiniteDifferences) {
+  // As TangentMatchesFiniteDifferences for q = 0.6 and 1.7, dashpot and Maxwell (M = 2 kPa, from a non-zero air
+  // pressure): 1e-6 relative.
+  std::mt19937 rng(12);
+  for (double q : {0.6, 1.7}) {
+    const PneumaticEffect dashpot(test::effect_test_foam(), power_law_air(q));
+    const PneumaticEffect maxwell(test::effect_test_foam(), power_law_air(q, 2e-3));
+    for (int trial = 0; trial < 4; ++trial) {
+      const Mat3 F_old = test::random_F(rng, 0.3), F_new = test::random_F(rng, 0.3);
+      EXPECT_LT(test::increment_tangent_error(dashpot, F_old, F_new, 0.01, virgin(dashpot)), 1e-6) << q << " " << trial;
+      std::vector<double> air(maxwell.state_size());
+      maxwell.integrate(Mat3::Identity(), F_old, 0.02, virgin(maxwell), air);
+      EXPECT_NE(air.back(), 0.0);
+      EXPECT_LT(test::increment_tangent_error(maxwell, F_old, F_new, 0.01, air), 1e-6) << q << " " << trial;
+    }
+  }
+}
+
+TEST(EffectPneumatic, PowerLawFlowAtConstantRateIsThePowerOfTheRate) {
+  // Confined compression at a constant dJ/dt from J = 0.9: extra P11 = -c(J) v^q / J with v = -(dJ/dt)/J (backward
+  // Euler: v = (J_old/J - 1)/dt), q = 0.5 and 1.5 at 0.02, 0.2 and 2 /s. The regularisation v_eps = 1e-4 /s changes it
+  // by |q - 1| (v_eps/v)^2 / 2 <= 1.3e-5: tolerance 2e-5 relative. The same step J 0.9 -> 0.899 taken in a tenth of the
+  // time gives a stress ratio 10^q (1e-4 relative).
+  for (double q : {0.5, 1.5}) {
+    const PneumaticEffect m(test::effect_test_foam(), power_law_air(q));
+    std::vector<double> at_rate;
+    for (double rate : {0.02, 0.2, 2.0}) {
+      const double dt = 1e-3 / rate, J_old = 0.9, J_new = J_old - rate * dt, v = (J_old / J_new - 1.0) / dt;
+      const double expected = -m.coefficient(J_new) * std::pow(v, q) / J_new;
+      const double s = extra_P11(m, J_old, J_new, dt);
+      EXPECT_NEAR(s, expected, 2e-5 * std::abs(expected)) << "q " << q << ", rate " << rate;
+      at_rate.push_back(s);
+    }
+    EXPECT_NEAR(at_rate[2] / at_rate[1], std::pow(10.0, q), 1e-4 * std::pow(10.0, q)) << q;
+  }
+}
+
+TEST(EffectPneumatic, PowerLawTrappedAirRelaxesAsTheClosedForm) {
+  // Confined: a 2 % step in 1 ms from J = 0.8, then a hold. With v_eps negligible, dp/dt = -M (p/c)^r, r = 1/q, gives
+  // p(t)^(1-r) = p0^(1-r) - (1-r) M c^-r t. q = 0.6 and 1.6, M = 2 kPa, dt = 1e-5 s (backward Euler, O(dt)): within
+  // 1 % while p falls to a fifth of p0 (the dashpot rate stays above 1e-2 /s, far above v_eps).
+  for (double q : {0.6, 1.6}) {
+    const double M = 2e-3, r = 1.0 / q;
+    const PneumaticEffect m(test::effect_test_foam(), power_law_air(q, M));
+    const double J_h = 0.78, c = m.coefficient(J_h), dt = 1e-5;
+    std::vector<double> state;
+    extra_P11(m, 0.8, J_h, 1e-3, {}, &state);
+    const double p0 = state.back();
+    ASSERT_GT(p0, 0.0);  // compression: positive air pressure
+    double t = 0.0, p = p0;
+    int checked = 0;
+    for (int k = 0; k < 2000000 && p > 0.2 * p0; ++k) {
+      std::vector<double> next;
+      extra_P11(m, J_h, J_h, dt, state, &next);
+      state = next, t += dt, p = state.back();
+      if (p < (0.8 - 0.2 * checked) * p0) {
+        const double exact = std::pow(std::pow(p0, 1.0 - r) - (1.0 - r) * M * std::pow(c, -r) * t, 1.0 / (1.0 - r));
+        EXPECT_NEAR(p, exact, 0.01 * exact) << "q " << q << ", t " << t;
+        ++checked;
+      }
+    }
+    EXPECT_EQ(checked, 4) << q;
+  }
+}
+
+TEST(EffectPneumatic, PowerLawHugeAirModulusIsThePowerLawDashpot) {
+  // As HugeAirModulusIsTheDashpot for q = 0.6: 1e-6 relative along a compression ramp.
+  const PneumaticEffect dashpot(test::effect_test_foam(), power_law_air(0.6));
+  const PneumaticEffect stiff(test::effect_test_foam(), power_law_air(0.6, 1e9));
+  std::vector<double> a = virgin(dashpot), b = virgin(stiff);
+  for (int k = 0; k < 50; ++k) {
+    const double J_old = 1.0 - 0.004 * k, J_new = J_old - 0.004;
+    std::vector<double> na, nb;
+    const double sa = extra_P11(dashpot, J_old, J_new, 0.01, a, &na), sb = extra_P11(stiff, J_old, J_new, 0.01, b, &nb);
+    EXPECT_NEAR(sb, sa, 1e-6 * std::abs(sa)) << k;
+    a = na, b = nb;
+  }
+}
+
+TEST(EffectPneumatic, PowerLawFlowHasNoSmallAmplitudeTangentAndRateExponentIsChecked) {
+  const PneumaticEffect m(test::effect_test_foam(), power_law_air(0.6));
+  EXPECT_THROW(m.complex_tangent(confined(0.8), 10.0), std::invalid_argument);
+  EXPECT_THROW(PneumaticEffect(test::effect_test_foam(), power_law_air(0.05)), std::invalid_argument);
+  EXPECT_THROW(PneumaticEffect(test::effect_test_foam(), power_law_air(3.5)), std::invalid_argument);
+  EXPECT_THROW(PneumaticEffect(test::effect_test_foam(), power_law_air(std::nan(""))), std::invalid_argument);
 }
 
 }  // namespace

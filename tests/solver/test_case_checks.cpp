@@ -1,6 +1,7 @@
 // Input errors that need the built mesh or material are raised by load_case, before the first step
 // runs and before any output file is written: a steady-state set missing from an .inp mesh, a
-// measured set whose nodes are all driven, a dynamic step without a mass density.
+// measured set whose nodes are all driven, a dynamic step without a mass density, a steady-state step on a material
+// without a small-amplitude tangent (a power-law air flow).
 #include <gtest/gtest.h>
 
 #include "io/input_error.hpp"
@@ -77,6 +78,21 @@ TEST(CaseChecks, MissingDensityIsFoundBeforeAnythingIsWritten) {
   EXPECT_NE(m.find("steps[1].steady_state: a steady_state step needs the mass density of material"), std::string::npos)
       << m;
   EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+TEST(CaseChecks, SteadyStateOnAPowerLawAirFlowIsFoundBeforeAnythingIsWritten) {
+  const fs::path dir = scratch_dir();
+  std::string air = foam_json(0.1, false);
+  air.insert(air.size() - 1, R"(, "effects": [{"kind": "pneumatic", "rate_exponent": 0.6}])");
+  const std::string m = run_error(dir, sweep_case(R"({"inp": "mesh.inp"})", "{}", "BOTTOM"), air);
+  EXPECT_NE(m.find("case.json: steps[1].steady_state: the steady_state step cannot linearise material \"foam\""),
+            std::string::npos)
+      << m;
+  EXPECT_NE(m.find("rate exponent != 1"), std::string::npos) << m;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  // The same material with Darcy flow (q = 1) passes the check.
+  air.replace(air.find("0.6"), 3, "1.0");
+  EXPECT_EQ(run_error(scratch_dir(), sweep_case(R"({"inp": "mesh.inp"})", "{}", "BOTTOM"), air), "");
 }
 
 }  // namespace
