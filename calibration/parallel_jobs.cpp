@@ -43,11 +43,16 @@ bool ForwardDifferenceCost::Evaluate(double const* const* parameters, double* re
     std::vector<double> x(u, u + parameters_), r_step(static_cast<std::size_t>(n_residuals_));
     const double step = std::max(min_step, relative_step_ * std::abs(u[j]));
     x[j] = u[j] + step;
-    if (!residuals_(x.data(), r_step.data())) {
-      ok = false;
-      return;
+    double signed_step = step;
+    if (!residuals_(x.data(), r_step.data())) {  // the model fails just beyond u: the backward difference instead
+      x[j] = u[j] - step;
+      signed_step = -step;
+      if (!residuals_(x.data(), r_step.data())) {
+        ok = false;
+        return;
+      }
     }
-    const double one_over_step = 1.0 / step;
+    const double one_over_step = 1.0 / signed_step;
     for (int i = 0; i < n_residuals_; ++i) J[i * parameters_ + j] = (r_step[i] - residuals[i]) * one_over_step;
   });
   return ok;

@@ -63,8 +63,10 @@ void parallel_for(std::size_t n, SpareCores* spare, const std::function<void(std
 /// A Ceres cost of one parameter block whose Jacobian is the forward difference of `residuals` (u -> r, false when
 /// the model fails), with Ceres' own rule (ceres/internal/numeric_diff.h, FORWARD: step max(sqrt(eps),
 /// relative_step |u_j|), column (r(u + step e_j) - r(u)) / step), so that a fit follows the same path as with
-/// DynamicNumericDiffCostFunction; the columns run on two threads while `spare` lends a core (parallel_for).
-/// `residuals` must be safe to call from two threads at once.
+/// DynamicNumericDiffCostFunction; the columns run on two threads while `spare` lends a core (parallel_for). A column
+/// whose forward point fails takes the backward difference (r(u) - r(u - step e_j)) / step; only when both fail does
+/// the Jacobian fail (a fit whose model fails just beyond a point, e.g. a power-law air flow whose free-stretch Newton
+/// stops converging, then stops there with Ceres' FAILURE). `residuals` must be safe to call from two threads at once.
 class ForwardDifferenceCost final : public ceres::CostFunction {
  public:
   using Residuals = std::function<bool(const double* u, double* r)>;

@@ -78,10 +78,10 @@ TEST(ForwardDifferenceCost, EqualsCeresForwardNumericDiffBitForBitOnOneThreadOrT
       EXPECT_NEAR(expected[i * kParameters + j], analytic(u.data(), i, j), 1e-4 * largest) << i << ", " << j;
 }
 
-TEST(ForwardDifferenceCost, AFailingRunFailsTheEvaluation) {
+TEST(ForwardDifferenceCost, AFailingRunOnBothSidesFailsTheEvaluation) {
   auto fails_off_start = [](const double* u, double* r) {
     for (int i = 0; i < kResiduals; ++i) r[i] = u[0];
-    return u[1] == 1.0;  // any step in u_1 fails
+    return u[1] == 1.0;  // any step in u_1, forward or backward, fails
   };
   cc::SpareCores spare;
   spare.lend();
@@ -92,6 +92,26 @@ TEST(ForwardDifferenceCost, AFailingRunFailsTheEvaluation) {
   double* j[] = {J.data()};
   EXPECT_TRUE(cost.Evaluate(p, r.data(), nullptr));
   EXPECT_FALSE(cost.Evaluate(p, r.data(), j));
+}
+
+TEST(ForwardDifferenceCost, AFailingForwardStepTakesTheBackwardDifference) {
+  // r_i = (i + 1) u_0^2 + u_1, failing for u_0 > 0.5: at u_0 = 0.5 the column of u_0 is the backward difference
+  // (i + 1)(2 u_0 - h) with h = 1e-5 x 0.5, exactly as written (1e-9 relative); the column of u_1 stays the forward one.
+  auto fails_above = [](const double* u, double* r) {
+    for (int i = 0; i < kResiduals; ++i) r[i] = (i + 1) * u[0] * u[0] + u[1];
+    return u[0] <= 0.5;
+  };
+  const cc::ForwardDifferenceCost cost(fails_above, 2, kResiduals, 1e-5, nullptr);
+  const std::vector<double> u = {0.5, 2.0};
+  std::vector<double> r(kResiduals), J(kResiduals * 2);
+  const double* p[] = {u.data()};
+  double* j[] = {J.data()};
+  ASSERT_TRUE(cost.Evaluate(p, r.data(), j));
+  const double h = 1e-5 * 0.5;
+  for (int i = 0; i < kResiduals; ++i) {
+    EXPECT_NEAR(J[i * 2], (i + 1) * (2 * 0.5 - h), 1e-9 * (i + 1)) << i;
+    EXPECT_NEAR(J[i * 2 + 1], 1.0, 1e-9) << i;
+  }
 }
 
 TEST(ParallelJobs, ParallelForCallsEachIndexOnceAndRunAllKeepsJobOrder) {
