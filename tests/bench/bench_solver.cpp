@@ -123,7 +123,7 @@ int bench_assembly(int n, unsigned max_threads) {
 
   for (unsigned threads = 1; threads <= max_threads; ++threads) {
     auto t0 = Clock::now();
-    const solver::Assembler assembler(m, {section}, solver::DofMap(m.num_nodes(), constrained), {threads});
+    const solver::Assembler assembler(m, {section}, solver::DofMap(m.num_nodes(), constrained), {threads, nullptr});
     const double setup = seconds_since(t0);
     solver::StateStore state = assembler.make_state_store();
     solver::SparseMatrix K = assembler.make_matrix();
@@ -135,7 +135,7 @@ int bench_assembly(int n, unsigned max_threads) {
                 threads, setup, seconds_since(t0) / repeats, assembler.num_colours(), static_cast<long>(K.nonZeros()));
   }
 
-  const solver::Assembler assembler(m, {section}, solver::DofMap(m.num_nodes(), constrained), {max_threads});
+  const solver::Assembler assembler(m, {section}, solver::DofMap(m.num_nodes(), constrained), {max_threads, nullptr});
   solver::StateStore state = assembler.make_state_store();
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(u_end.size());
   solver::EquilibriumProblem problem(assembler, state, zero, u_end, zero, 0.0);

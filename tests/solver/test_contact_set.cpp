@@ -115,7 +115,9 @@ TEST(ContactSet, PatchTestFlatPlaten) {
   for (int n = 1; n <= 4; ++n) {
     const AugmentedResult r = test::contact_increment(m, set, Vec3(0, 0, -0.25 * n * d), m.u, 1e-10, &last);
     ASSERT_TRUE(r.converged()) << r.newton.message << r.message;
-    if (n == 4) EXPECT_GT(r.solves, 1);  // augmentations were needed
+    if (n == 4) {
+      EXPECT_GT(r.solves, 1);  // augmentations were needed
+    }
   }
   const ContactTotals t = set.totals();
   EXPECT_LE(t.max_penetration, p.tolerance);

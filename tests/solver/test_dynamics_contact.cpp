@@ -80,7 +80,7 @@ struct ContactCube {
   cplx prescribed_stiffness(double f) const {
     HarmonicModel model;
     model.system = sys.get();
-    SteadyStateSolver s(model, {}, {set_dofs(m.mesh, "zmax", 2), rollers(true)},
+    SteadyStateSolver s(model, {}, {set_dofs(m.mesh, "zmax", 2), rollers(true), {}},
                         {{"top", set_dofs(m.mesh, "zmax", 2)}, {"base", set_dofs(m.mesh, "zmin", 2)}});
     return s.solve(f, 0.01).reaction[0] / 0.01;
   }
@@ -94,11 +94,11 @@ TEST(DynamicsContact, IndenterSweepEqualsPrescribedSweepInSeriesWithThePenalty) 
   ASSERT_EQ(lin.closed.size(), 9u);
   EXPECT_NEAR(lin.closed_area, area, 1e-9);
   const double K_pen = penalty * area;
-  SteadyStateSolver driven(c.contact_model(lin), {}, {{c.w}, c.rollers(true)},
+  SteadyStateSolver driven(c.contact_model(lin), {}, {{c.w}, c.rollers(true), {}},
                            {{"indenter", {c.w}}, {"base", set_dofs(c.m.mesh, "zmin", 2)}});
   std::vector<int> held = c.rollers(false);
   held.push_back(c.w);
-  SteadyStateSolver shaken(c.contact_model(lin), {}, {set_dofs(c.m.mesh, "zmin", 2), held},
+  SteadyStateSolver shaken(c.contact_model(lin), {}, {set_dofs(c.m.mesh, "zmin", 2), held, {}},
                            {{"indenter", {c.w}}, {"base", set_dofs(c.m.mesh, "zmin", 2)}});
   for (double f : {1.0, 5.0, 20.0}) {
     const cplx Kp = c.prescribed_stiffness(f);
@@ -131,7 +131,7 @@ TEST(DynamicsContact, FreeIndenterWithMassGivesTheTransmissibility) {
   HarmonicModel model = c.contact_model(lin);
   const double mass = 1e-3;  // 1 kg [t]
   model.lumped_mass = {{c.w, mass}};
-  SteadyStateSolver s(model, {}, {set_dofs(c.m.mesh, "zmin", 2), c.rollers(false)},
+  SteadyStateSolver s(model, {}, {set_dofs(c.m.mesh, "zmin", 2), c.rollers(false), {}},
                       {{"indenter", {c.w}}, {"base", set_dofs(c.m.mesh, "zmin", 2)}});
   for (double f : {1.0, 3.5, 10.0}) {
     const double w2 = std::pow(2 * M_PI * f, 2);
@@ -159,7 +159,7 @@ TEST(DynamicsContact, TangentiallyFrictionlessSlidesFrictionalSticks) {
       EXPECT_LT((lin.node_stiffness[i] - expected).norm(), 1e-12 * penalty * A) << mu;
     }
     auto held = c.rollers(true);
-    SteadyStateSolver s(c.contact_model(lin), {}, {{c.w}, held},
+    SteadyStateSolver s(c.contact_model(lin), {}, {{c.w}, held, {}},
                         {{"indenter", {c.w}}, {"base", set_dofs(c.m.mesh, "zmin", 0)}});
     const FrequencyResponse r = s.solve(5.0, 0.01);
     const cplx F = contact_spring_force(*c.set, lin, r.u, r.u(c.w), ex)(0);
