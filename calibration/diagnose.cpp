@@ -946,8 +946,9 @@ void winner_verdict(const material::MaterialSpec& baseline, const DiagnoseOption
     o << "Tests still beyond noise after adding it:";
     for (const auto& t : w.compare.tests)
       if (t.noise_ratio() > options.compare.noise_level_ratio) o << " " << t.name << " (" << fmt(t.noise_ratio(), 3) << "x)";
-    o << ": the base calibration is off there, or a further effect outside the catalogue is missing (rerun `cushion fit`, "
-         "then diagnose again).";
+    o << ": the effect's form in cushion may not follow the data's (its family can be right while the measured effect "
+         "has another functional form, e.g. an air flow whose resistance is a power of the rate), the base calibration is "
+         "off there, or a further effect outside the catalogue is missing (rerun `cushion fit`, then diagnose again).";
   }
   d.verdict = o.str();
 }
