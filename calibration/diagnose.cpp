@@ -328,7 +328,10 @@ ceres::Solver::Summary minimise(const CandidateModel& model, std::vector<double>
   so.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
   ceres::Solve(so, &problem, &summary);
-  if (summary.termination_type == ceres::FAILURE && best.cost() < summary.initial_cost) u = best.u();
+  if (summary.termination_type == ceres::FAILURE && best.cost() < summary.initial_cost) {
+    u = best.u();  // a Jacobian column's point may lie a step beyond a bound: back inside, where it was evaluated
+    for (std::size_t i = 0; i < u.size(); ++i) u[i] = std::clamp(u[i], model.free()[i].lower, model.free()[i].upper);
+  }
   return summary;
 }
 
