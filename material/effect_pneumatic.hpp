@@ -25,8 +25,8 @@
 /// Flow law (rate_exponent q, default 1: Darcy): the dashpot's pressure follows the volumetric rate v = -(dJ/dt)/J
 /// [1/s] as a power law, p = c(J) g(v), g(v) = v (v^2 + v_eps^2)^((q-1)/2) [1/s] with the reference rate 1/s
 /// (g = sign(v) |v|^q for |v| >> v_eps = 1e-4 /s, a regularisation that keeps the tangent finite at rest; q = 1: g = v
-/// exactly, Darcy). q < 1: a flow resistance that thins with rate (the air-flow dissipation of foams measured as a
-/// power law of the rate); q > 1: inertial (Forchheimer-like) losses growing faster than the rate. With the trapped-air
+/// exactly, Darcy). q < 1: a flow resistance that thins with rate (an empirical description [A], no mechanism sourced);
+/// q > 1: inertial (Forchheimer-like) losses growing faster than the rate. With the trapped-air
 /// spring the branch is M in series with this dashpot; the dashpot rate v_d is the root of the monotone
 ///   c(J) g(v_d) - p_old - M (J_old/J - 1) + M dt v_d = 0,    p = c(J) g(v_d),
 /// solved by safeguarded Newton (docs/physics.md 5.1).
@@ -76,7 +76,7 @@ class PneumaticEffect final : public EffectDecorator {
   };
   /// Linear flow (q = 1): closed form, dashpot or Maxwell.
   Pressure darcy_pressure(double J, double J_old, double dt, double p_old) const;
-  /// Power-law flow (q != 1): dashpot, or Maxwell by Newton on the dashpot rate.
+  /// Power-law flow (q != 1): dashpot closed form, or Maxwell by Newton for the dashpot rate (maxwell_dashpot_rate).
   Pressure power_law_pressure(double J, double J_old, double dt, double p_old) const;
 
   PneumaticParameters p_;
