@@ -50,6 +50,9 @@ const std::vector<Entry>& entries() {
           "M: stiffness of the air trapped in the cells (isothermal air at 1 atm: about 100 kPa), in series with the "
           "flow: a Maxwell branch of time eta R^2/(8 K M); 0: no trapped-air spring (Darcy dashpot)",
           0.0, 0.0, 1e9, false, true, true, 100.0},
+         {"air_modulus_exponent",
+          "r: the trapped air stiffens as the cells shrink, M(J) = M J^-r: 0 constant, 1 isothermal ideal gas (Boyle)",
+          0.0, 0.0, 5.0, false, false, false},
          {"rate_exponent",
           "q: flow law p = c(J) sign(v)|v|^q of the volumetric rate v [1/s]: 1 Darcy, < 1 resistance thinning with "
           "rate, > 1 inertial (Forchheimer-like) losses",
@@ -63,6 +66,7 @@ const std::vector<Entry>& entries() {
          p.air_viscosity = c.value.at("air_viscosity_Pa_s") * Pa;
          const double M = c.value.at("air_modulus_kPa");
          if (M > 0.0) p.air_modulus = M * kPa;
+         p.air_modulus_exponent = c.value.at("air_modulus_exponent");
          return std::make_shared<PneumaticEffect>(c.inner, p);
        }},
       {{"friction",

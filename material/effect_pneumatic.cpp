@@ -16,6 +16,8 @@ PneumaticEffect::PneumaticEffect(std::shared_ptr<const Material> inner, Pneumati
     throw std::invalid_argument("pneumatic: permeability exponent must be >= 0");
   if (!positive(p_.air_viscosity)) throw std::invalid_argument("pneumatic: air viscosity must be > 0");
   if (!(p_.air_modulus > 0.0)) throw std::invalid_argument("pneumatic: air modulus must be > 0 (infinite: dashpot)");
+  if (!(p_.air_modulus_exponent >= 0.0 && p_.air_modulus_exponent <= 5.0))
+    throw std::invalid_argument("pneumatic: air modulus exponent must be in [0, 5]");
   if (!(p_.rate_exponent >= 0.1 && p_.rate_exponent <= 3.0))
     throw std::invalid_argument("pneumatic: rate exponent must be in [0.1, 3]");
 }
@@ -70,8 +72,12 @@ std::pair<double, Flow> maxwell_dashpot_rate(double c, double Mdt, double a, dou
 
 }  // namespace
 
+double PneumaticEffect::air_modulus(double J) const {
+  return p_.air_modulus_exponent == 0.0 ? p_.air_modulus : p_.air_modulus * std::pow(J, -p_.air_modulus_exponent);
+}
+
 double PneumaticEffect::relaxation_time(double J) const {
-  return std::isinf(p_.air_modulus) ? 0.0 : coefficient(J) / p_.air_modulus;
+  return std::isinf(p_.air_modulus) ? 0.0 : coefficient(J) / air_modulus(J);
 }
 
 double PneumaticEffect::coefficient(double J) const {
@@ -103,28 +109,34 @@ PointResponse PneumaticEffect::integrate(const Mat3& F_old, const Mat3& F_new, d
 }
 
 PneumaticEffect::Pressure PneumaticEffect::darcy_pressure(double J, double J_old, double dt, double p_old) const {
-  const double c0 = coefficient(1.0), M = p_.air_modulus, n = p_.permeability_exponent;
-  if (std::isinf(M))  // dashpot: p = -c(J) (J - J_old) / (dt J) with c(J) = c0 J^{-n}
+  const double c0 = coefficient(1.0), n = p_.permeability_exponent;
+  if (std::isinf(p_.air_modulus))  // dashpot: p = -c(J) (J - J_old) / (dt J) with c(J) = c0 J^{-n}
     return {-(c0 / dt) * std::pow(J, -n - 1.0) * (J - J_old),
             -(c0 / dt) * std::pow(J, -n - 2.0) * ((-n - 1.0) * (J - J_old) + J)};
-  // Maxwell: p = A/B, A = p_old - M (J - J_old)/J, B = 1 + dt M J^n / c0
-  const double A = p_old - M * (J - J_old) / J, dA = -M * J_old / (J * J);
-  const double B = 1.0 + dt * M * std::pow(J, n) / c0, dB = dt * M * n * std::pow(J, n - 1.0) / c0;
+  // Maxwell: p = A/B, A = p_old - M(J) (J - J_old)/J, B = 1 + dt M(J) J^n / c0, M(J) = M0 J^-r (dM/dJ = -r M/J; r = 0:
+  // the terms with dM vanish exactly, so a constant modulus gives the same numbers as before the exponent existed)
+  const double M = air_modulus(J), dM = -p_.air_modulus_exponent * M / J;
+  const double A = p_old - M * (J - J_old) / J, dA = -M * J_old / (J * J) - dM * (J - J_old) / J;
+  const double B = 1.0 + dt * M * std::pow(J, n) / c0,
+               dB = dt * M * n * std::pow(J, n - 1.0) / c0 + dt * dM * std::pow(J, n) / c0;
   return {A / B, (dA * B - A * dB) / (B * B)};
 }
 
 PneumaticEffect::Pressure PneumaticEffect::power_law_pressure(double J, double J_old, double dt, double p_old) const {
-  const double q = p_.rate_exponent, M = p_.air_modulus;
+  const double q = p_.rate_exponent;
   const double c = coefficient(J), dc_dJ = -p_.permeability_exponent * c / J;
   const double strain = J_old / J - 1.0, dstrain_dJ = -J_old / (J * J);  // -(J - J_old)/J
-  if (std::isinf(M)) {  // dashpot: p = c(J) g(v), v = strain/dt
+  if (std::isinf(p_.air_modulus)) {  // dashpot: p = c(J) g(v), v = strain/dt
     const Flow f = power_flow(strain / dt, q);
     return {c * f.g, dc_dJ * f.g + c * f.dg * dstrain_dJ / dt};
   }
-  // Maxwell: the dashpot rate v solves c g(v) - a + M dt v = 0 with a = p_old + M strain (maxwell_dashpot_rate).
+  // Maxwell: the dashpot rate v solves R = c g(v) - a + M dt v = 0 with a = p_old + M strain, M = M(J)
+  // (maxwell_dashpot_rate); dR/dJ at fixed v = c' g - M' strain - M strain' + M' dt v.
+  const double M = air_modulus(J), dM = -p_.air_modulus_exponent * M / J;
   const double a = p_old + M * strain;
   const auto [v, f] = maxwell_dashpot_rate(c, M * dt, a, q);
-  const double dR_dJ = dc_dJ * f.g - M * dstrain_dJ, dv_dJ = -dR_dJ / (c * f.dg + M * dt);
+  const double dR_dJ = dc_dJ * f.g - (M * dstrain_dJ + dM * strain) + dM * dt * v;
+  const double dv_dJ = -dR_dJ / (c * f.dg + M * dt);
   return {c * f.g, dc_dJ * f.g + c * f.dg * dv_dJ};
 }
 
@@ -145,7 +157,11 @@ std::string PneumaticEffect::describe() const {
   std::ostringstream o;
   o << "pneumatic damping (R = " << p_.drainage_length << " mm, K0 = " << p_.permeability << " mm^2, n_K = "
     << p_.permeability_exponent << ", eta_air = " << p_.air_viscosity * 1e6 << " Pa s, air modulus "
-    << (std::isinf(p_.air_modulus) ? std::string("infinite (dashpot)") : std::to_string(p_.air_modulus * 1e3) + " kPa")
+    << (std::isinf(p_.air_modulus) ? std::string("infinite (dashpot)")
+                                   : std::to_string(p_.air_modulus * 1e3) + " kPa" +
+                                         (p_.air_modulus_exponent == 0.0
+                                              ? std::string()
+                                              : " x J^-" + std::to_string(p_.air_modulus_exponent)))
     << ", flow rate exponent q = " << p_.rate_exponent << ") over " << inner_->describe();
   return o.str();
 }

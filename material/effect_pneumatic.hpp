@@ -16,6 +16,9 @@
 /// at 1 atm: M ~ p_atm = 101 kPa) in series with the Darcy flow, a MAXWELL branch
 ///   dp/dt + p / tau(J) = -M (dJ/dt)/J,   tau(J) = c(J)/M,   c(J) = eta R^2/(8 K(J)),
 /// integrated by backward Euler with p the own state:  p = [p_old - M (J - J_old)/J] / (1 + dt M / c(J)).
+/// The trapped air stiffens as the cells shrink (air_modulus_exponent r, default 0: constant): M = M(J) = M0 J^-r,
+/// evaluated at the increment's end; an isothermal ideal gas filling the cells gives r = 1 (Boyle: p_abs ~ 1/J, so
+/// dp/d(ln J) = -p_abs ~ -p_atm/J; docs/physics.md 5.1).
 /// M -> infinity gives back the dashpot p = -c(J) (dJ/dt)/J (the default: air_modulus infinite); with M finite the
 /// air raises the storage modulus at frequencies above 1/(2 pi tau) and relaxes under a hold, and tau depends on the
 /// compression through K(J) (docs/physics.md 5.1).
@@ -47,7 +50,8 @@ struct PneumaticParameters {
   double permeability = 1e-3;        ///< K0 [mm^2] at J = 1, > 0 (1e-3 mm^2 = 1e-9 m^2)
   double permeability_exponent = 2;  ///< n_K [-], >= 0: K = K0 J^{n_K}
   double air_viscosity = 1.8e-11;    ///< eta_air [MPa s] (1.8e-5 Pa s), > 0
-  double air_modulus = std::numeric_limits<double>::infinity();  ///< M [MPa], > 0; infinite: Darcy dashpot
+  double air_modulus = std::numeric_limits<double>::infinity();  ///< M0 [MPa], > 0, at J = 1; infinite: Darcy dashpot
+  double air_modulus_exponent = 0.0;  ///< r [-], in [0, 5]: M(J) = M0 J^-r (0: constant; 1: isothermal gas, Boyle)
   double rate_exponent = 1.0;        ///< q [-], in [0.1, 3]: flow law p = c(J) g(v), g ~ sign(v)|v|^q; 1: Darcy
 };
 
@@ -66,7 +70,9 @@ class PneumaticEffect final : public EffectDecorator {
 
   /// Damping coefficient eta R^2 / (8 K(J)) [MPa s] at volume ratio J.
   double coefficient(double J) const;
-  /// Relaxation time c(J)/M [s] of the trapped air at volume ratio J (0 for the dashpot, M infinite).
+  /// Trapped-air modulus M(J) = M0 J^-r [MPa] at volume ratio J (infinite for the dashpot).
+  double air_modulus(double J) const;
+  /// Relaxation time c(J)/M(J) [s] of the trapped air at volume ratio J (0 for the dashpot, M infinite).
   double relaxation_time(double J) const;
   const PneumaticParameters& parameters() const { return p_; }
 
