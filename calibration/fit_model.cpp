@@ -236,7 +236,8 @@ QuasiStaticProtocol protocol_of(const QuasiStaticTest& test, const Segments& seg
   return p;
 }
 
-DynamicProtocol protocol_of(const DynamicTest& test, int steps_per_cycle, double default_preload_rate_mm_min) {
+DynamicProtocol protocol_of(const DynamicTest& test, int steps_per_cycle, int transient_steps_per_cycle,
+                            double default_preload_rate_mm_min) {
   DynamicProtocol p;
   p.name = test.name;
   p.preload_strain = test.preload_strain;
@@ -250,6 +251,7 @@ DynamicProtocol protocol_of(const DynamicTest& test, int steps_per_cycle, double
   p.cycles = test.cycles;
   p.fit_cycles = test.fit_cycles;
   p.steps_per_cycle = steps_per_cycle;
+  p.transient_steps_per_cycle = transient_steps_per_cycle;
   return p;
 }
 

@@ -101,8 +101,10 @@ QuasiStaticProtocol protocol_of(const QuasiStaticTest& test, const Segments& seg
 
 /// The protocol of a dynamic test as its campaign describes it (preflex, rest, preload ramp at the test's
 /// preload_rate_mm_min or `default_preload_rate_mm_min` when it gives none, dwell, amplitude convention,
-/// cycles and fit_cycles per frequency, lift-off), run at `steps_per_cycle` time steps a cycle.
-DynamicProtocol protocol_of(const DynamicTest& test, int steps_per_cycle, double default_preload_rate_mm_min);
+/// cycles and fit_cycles per frequency, lift-off), run at `steps_per_cycle` time steps a cycle of the fitted cycles and
+/// `transient_steps_per_cycle` of the cycles before them (0: steps_per_cycle).
+DynamicProtocol protocol_of(const DynamicTest& test, int steps_per_cycle, int transient_steps_per_cycle,
+                            double default_preload_rate_mm_min);
 
 /// Median sampling rate of a record [Hz].
 double sampling_rate(const StressStrainRecord& record);

@@ -256,8 +256,16 @@ DynamicRecord run_dynamic(const material::Material& model, const LabSpecimen& sp
     s.kind = Segment::Kind::sine;
     s.amplitude = p.displacement_amplitude_mm(f) / H;
     s.frequency = f;
-    s.cycles = p.cycles;
-    s.steps = p.cycles * p.steps_per_cycle;
+    // The transient cycles, then the fitted ones: two sines of whole cycles, so the second starts where the first
+    // began (build_history: a sine about the control value where it starts) and the path is the one sine.
+    const int transient = p.cycles - p.fit_cycles;
+    if (transient > 0) {
+      s.cycles = transient;
+      s.steps = transient * (p.transient_steps_per_cycle > 0 ? p.transient_steps_per_cycle : p.steps_per_cycle);
+      segments.push_back(s);
+    }
+    s.cycles = p.fit_cycles;
+    s.steps = p.fit_cycles * p.steps_per_cycle;
     segments.push_back(s);
     start.push_back(t);
     t += p.cycles / f;

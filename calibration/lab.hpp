@@ -74,7 +74,10 @@ struct DynamicProtocol {
   std::vector<double> frequencies_Hz;
   int cycles = 20;           ///< cycles run at each frequency
   int fit_cycles = 10;       ///< last cycles used by the sine fit
-  int steps_per_cycle = 64;
+  int steps_per_cycle = 64;  ///< time steps a cycle of the fitted cycles (and of all when transient_steps_per_cycle is 0)
+  /// Time steps a cycle of the cycles before the fitted ones, which only set the state the fitted cycles start from
+  /// (0: steps_per_cycle). compare and diagnose run them coarser (CompareOptions); the lab keeps every cycle fine.
+  int transient_steps_per_cycle = 0;
   std::string use;
   /// Displacement amplitude [mm] at frequency f: U = a_peak / (2 pi f)^2.
   double displacement_amplitude_mm(double f_Hz) const;
@@ -107,7 +110,8 @@ QuasiStaticRecord run_quasi_static(const material::Material& model, const LabSpe
                                    const QuasiStaticProtocol& protocol);
 /// Runs one dynamic protocol: THE forward model of a dynamic test (the lab, compare and diagnose all call
 /// it); noise (if any) is added to the force samples before the sine fit. The sines take
-/// protocol.steps_per_cycle time steps a cycle; |E*| and phase from sine + cosine + offset + drift fits to
+/// protocol.steps_per_cycle time steps a cycle (the cycles before the last fit_cycles:
+/// protocol.transient_steps_per_cycle when non-zero); |E*| and phase from sine + cosine + offset + drift fits to
 /// stress and strain over the last fit_cycles cycles of each frequency.
 DynamicRecord run_dynamic(const material::Material& model, const LabSpecimen& specimen,
                           const DynamicProtocol& protocol, const LabNoise& noise, unsigned long long stream);
