@@ -76,8 +76,9 @@ TestCompare compare_dynamic(const material::Material& model, const Campaign& cam
   c.preload = test.preload_strain;
   c.noise = noise;
   const LabSpecimen lab{campaign.specimen.length, campaign.specimen.width, campaign.specimen.thickness, 65.0};
-  const DynamicRecord r =
-      run_dynamic(model, lab, protocol_of(test, o.dynamic_steps_per_cycle, o.dynamic_transient_steps_per_cycle, o.preload_rate_mm_min), LabNoise{}, 0);
+  const DynamicProtocol protocol =
+      protocol_of(test, o.dynamic_steps_per_cycle, o.dynamic_transient_steps_per_cycle, o.preload_rate_mm_min);
+  const DynamicRecord r = run_dynamic(model, lab, protocol, LabNoise{}, 0);
   c.x = test.moduli.frequency;
   c.measured = modulus_amplitude(test.moduli);
   c.measured_phase = modulus_phase(test.moduli);

@@ -13,9 +13,10 @@
 /// (lab.hpp run_dynamic, also the virtual lab's): preflex and rest, preload ramp at preload_rate_mm_min
 /// (default CompareOptions::preload_rate_mm_min), dwell_before_sweep_s, then at each frequency the test's
 /// `cycles` (default 20) sines, |E*| and phase fitted on the last `fit_cycles` (default 10) run at
-/// `dynamic_steps_per_cycle` steps a cycle (the cycles before them at `dynamic_transient_steps_per_cycle`), amplitude read as the test's amplitude_convention (default peak-to-peak, paper
-/// 2.3). compare and diagnose run the same schedule, so they report the same figures for the same material
-/// and campaign. Regions: low/mid/high thirds of the frequency list, each for |E*| [kPa] and phase [deg].
+/// `dynamic_steps_per_cycle` steps a cycle (the cycles before them at `dynamic_transient_steps_per_cycle`),
+/// amplitude read as the test's amplitude_convention (default peak-to-peak, paper 2.3). compare and diagnose run
+/// the same schedule, so they report the same figures for the same material and campaign. Regions: low/mid/high
+/// thirds of the frequency list, each for |E*| [kPa] and phase [deg].
 ///
 /// Noise estimates (data only, never the model):
 ///   quasi-static: a noise that depends on the reading, sigma^2 = A stress^2 + B, fitted to the fifth
@@ -47,8 +48,8 @@ struct CompareOptions {
   int quasi_static_steps = 300;     ///< model steps per loading ramp at most (record rate if lower)
   int dynamic_steps_per_cycle = 64;  ///< model time steps per sine cycle (cycles per frequency: the campaign's)
   /// Model time steps per cycle of the cycles before the fitted ones (they only set the state the fitted cycles start
-  /// from): 32 instead of 64 changes a foreign campaign's |E*| and phase by at most 0.04 of their noise and cuts the
-  /// forward model's time by a fifth (the dynamic sweeps are about three quarters of it; docs/physics.md 7).
+  /// from): 32 instead of 64 changed benchmark campaigns' |E*| and phase by at most 0.042 of their noise and a
+  /// diagnosis' time by a factor 0.895 (median; the sweeps are about three quarters of a model run; physics.md 9.6).
   int dynamic_transient_steps_per_cycle = 32;
   double preload_rate_mm_min = 30.0;  ///< dynamic preload ramp (paper 2.3) of tests that give none
   double noise_level_ratio = 1.5;   ///< error/noise at or below this: "at the noise level"

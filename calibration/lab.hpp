@@ -74,7 +74,7 @@ struct DynamicProtocol {
   std::vector<double> frequencies_Hz;
   int cycles = 20;           ///< cycles run at each frequency
   int fit_cycles = 10;       ///< last cycles used by the sine fit
-  int steps_per_cycle = 64;  ///< time steps a cycle of the fitted cycles (and of all when transient_steps_per_cycle is 0)
+  int steps_per_cycle = 64;  ///< time steps a cycle of the fitted cycles (of all if transient_steps_per_cycle is 0)
   /// Time steps a cycle of the cycles before the fitted ones, which only set the state the fitted cycles start from
   /// (0: steps_per_cycle). compare and diagnose run them coarser (CompareOptions); the lab keeps every cycle fine.
   int transient_steps_per_cycle = 0;

@@ -132,7 +132,8 @@ void dynamic_proposals(const Campaign& c, const NoiseScales& n, const CompareOpt
   double lo = 1.0, hi = 0.0;
   for (const auto& t : c.dynamic) lo = std::min(lo, t.preload_strain), hi = std::max(hi, t.preload_strain);
   const DynamicTest& first = c.dynamic.front();
-  const DynamicProtocol base = protocol_of(first, o.dynamic_steps_per_cycle, o.dynamic_transient_steps_per_cycle, o.preload_rate_mm_min);
+  const DynamicProtocol base =
+      protocol_of(first, o.dynamic_steps_per_cycle, o.dynamic_transient_steps_per_cycle, o.preload_rate_mm_min);
   auto add = [&](std::string name, DynamicProtocol p, double noise_factor) {
     out.push_back({std::move(name), 2 * static_cast<int>(p.frequencies_Hz.size()),
                    [p, &lab, n, noise_factor](const material::Material& a, const material::Material& b) {

@@ -235,7 +235,9 @@ TEST(LabProtocol, CoarseTransientCyclesLeaveTheFittedCyclesAsTheyWere) {
   cal::DynamicProtocol coarse = fine, reference = fine;
   coarse.transient_steps_per_cycle = 32;
   reference.steps_per_cycle = 256;
-  const auto run = [&](const cal::DynamicProtocol& p) { return cal::run_dynamic(*m.model, cal::LabSpecimen{}, p, cal::LabNoise{}, 0); };
+  const auto run = [&](const cal::DynamicProtocol& p) {
+    return cal::run_dynamic(*m.model, cal::LabSpecimen{}, p, cal::LabNoise{}, 0);
+  };
   const cal::DynamicRecord a = run(fine), b = run(coarse), r = run(reference);
   for (std::size_t i = 0; i < a.frequency_Hz.size(); ++i) {
     const double step_error = std::abs(a.dynamic_modulus_kPa[i] - r.dynamic_modulus_kPa[i]);
