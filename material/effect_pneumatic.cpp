@@ -72,7 +72,7 @@ std::pair<double, Flow> maxwell_dashpot_rate(double c, double Mdt, double a, dou
 
 }  // namespace
 
-double PneumaticEffect::air_modulus(double J) const {
+double PneumaticEffect::air_modulus(double J) const {  // r = 0 (the default) skips a pow in every increment
   return p_.air_modulus_exponent == 0.0 ? p_.air_modulus : p_.air_modulus * std::pow(J, -p_.air_modulus_exponent);
 }
 
