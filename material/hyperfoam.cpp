@@ -1,5 +1,6 @@
 #include "material/hyperfoam.hpp"
 
+#include <array>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -12,16 +13,41 @@ namespace {
 
 using PrincipalResponse = principal::Response;
 
+/// first[k]: the first axis j <= k with s_j == s_k (k itself if none); equal stretches share every power.
+std::array<int, 3> first_equal_axis(const Vec3& s) {
+  std::array<int, 3> first{0, 1, 2};
+  for (int k = 1; k < 3; ++k)
+    for (int j = 0; j < k; ++j)
+      if (s(j) == s(k)) {
+        first[k] = j;
+        break;
+      }
+  return first;
+}
+
 PrincipalResponse principal_response(const std::vector<HyperfoamTerm>& terms, const Vec3& s) {
   PrincipalResponse r;
   const double lnJ = s.sum();
-  const principal::StretchPair pairs[3] = {{s, 0, 1}, {s, 0, 2}, {s, 1, 2}};
+  // Axes and pairs of equal log stretch (the uniaxial paths: l2 = l3) are evaluated once and shared: the same inputs
+  // give the same results, so this only skips transcendental calls (about half of them on a uniaxial path).
+  const std::array<int, 3> axis = first_equal_axis(s);
+  constexpr int pair_axes[3][2] = {{0, 1}, {0, 2}, {1, 2}};
+  std::array<int, 3> pair_source{0, 1, 2};  // an earlier pair with the same two stretches, else the pair itself
+  for (int p = 1; p < 3; ++p)
+    for (int q = 0; q < p; ++q)
+      if (axis[pair_axes[q][0]] == axis[pair_axes[p][0]] && axis[pair_axes[q][1]] == axis[pair_axes[p][1]]) {
+        pair_source[p] = q;
+        break;
+      }
+  std::array<principal::StretchPair, 3> pairs;
+  for (int p = 0; p < 3; ++p)
+    pairs[p] = pair_source[p] == p ? principal::StretchPair(s, pair_axes[p][0], pair_axes[p][1]) : pairs[pair_source[p]];
   for (const HyperfoamTerm& term : terms) {
     const double mu = term.mu, a = term.alpha, beta = term.beta();
-    // l_a^alpha - 1 and J^(-alpha beta) - 1 in expm1 form: exact near the undeformed state.
+    // l_a^alpha - 1 and J^(-alpha beta) - 1 in expm1 form: exact near the undeformed state (beta = 0: exactly 0).
     Vec3 la_m1;
-    for (int k = 0; k < 3; ++k) la_m1(k) = std::expm1(a * s(k));
-    const double Jb_m1 = std::expm1(-a * beta * lnJ);
+    for (int k = 0; k < 3; ++k) la_m1(k) = axis[k] == k ? std::expm1(a * s(k)) : la_m1(axis[k]);
+    const double Jb_m1 = beta == 0.0 ? 0.0 : std::expm1(-a * beta * lnJ);
     const double Jb = 1.0 + Jb_m1;
     // W_i = 2 mu/alpha^2 [sum (l^alpha - 1) + (1/beta)(J^(-alpha beta) - 1)], the last term -> -alpha ln J at beta = 0.
     const double vol = beta == 0.0 ? -a * lnJ : Jb_m1 / beta;
@@ -34,10 +60,15 @@ PrincipalResponse principal_response(const std::vector<HyperfoamTerm>& terms, co
     }
     // S_a = 2 mu/alpha (l_a^(alpha-2) - J^(-alpha beta) l_a^(-2)), so
     // G_ab = 2 mu/alpha [q_(alpha-2) - J^(-alpha beta) q_(-2)] (symmetric in a, b).
-    for (const principal::StretchPair& p : pairs) {
-      const double g = 2.0 * mu / a * (p.q_alpha_minus2(a, 1.0 + la_m1(p.a)) - Jb * p.q_minus2);
-      r.G(p.a, p.b) += g;
-      r.G(p.b, p.a) += g;
+    std::array<double, 3> g{};
+    for (int p = 0; p < 3; ++p) {
+      const principal::StretchPair& pair = pairs[p];
+      g[p] = pair_source[p] == p
+                 ? 2.0 * mu / a * (pair.q_alpha_minus2(a, 1.0 + la_m1(pair.a)) - Jb * pair.q_minus2)
+                 : g[pair_source[p]];
+      const int i = pair_axes[p][0], j = pair_axes[p][1];
+      r.G(i, j) += g[p];
+      r.G(j, i) += g[p];
     }
   }
   return r;

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
@@ -16,8 +15,7 @@ namespace {
 
 constexpr int default_steps_ramp_hold = 100;
 constexpr int default_steps_per_cycle = 64;
-constexpr double stretch_tolerance = 1e-12;        // Newton stop: |dl| <= 1e-12 l
-constexpr double negligible_stretch_step = 1e-15;  // a correction this small is not applied: |dl| <= 1e-15 l
+constexpr double stretch_tolerance = 1e-12;  // Newton stop: the next correction |dl| <= 1e-12 l (not applied)
 constexpr int max_newton_iterations = 60;
 constexpr int max_backtracks = 30;
 
@@ -40,34 +38,59 @@ PointResponse integrate(const Material& material, const Committed& committed, co
   return material.integrate(committed.F, F_new, dt, committed.state, state_new);
 }
 
-/// Solves S_aa = 0 for the diagonal stretches F(a,a) with free[a] (the others stay as given in F) by
-/// Newton on the Green-Lagrange components E_aa = (F_aa^2 - 1)/2 with the consistent tangent dS/dE,
-/// halving a step that leaves the admissible range or makes the material fail. F must be diagonal
-/// in the free rows/columns. Returns the response at the solution; F and state_new hold the solution.
-PointResponse solve_free_axes(const Material& material, const Committed& committed, Mat3& F,
-                              const std::array<bool, 3>& free, double dt, double time,
-                              std::vector<double>& state_new) {
+/// The unknowns of the free-stretch Newton: each moves the diagonal stretches F(a,a) of its axes together.
+struct FreeUnknowns {
+  int n = 0;
+  std::array<std::array<int, 3>, 3> axes{};  ///< axes[k][0 .. size[k] - 1]: the axes of unknown k
+  std::array<int, 3> size{};
+};
+
+/// One unknown per free axis; with `tie_equal`, free axes whose stretch starts equal share one unknown.
+FreeUnknowns free_unknowns(const std::array<bool, 3>& free, const Mat3& F, bool tie_equal) {
+  FreeUnknowns u;
+  for (int a = 0; a < 3; ++a) {
+    if (!free[a]) continue;
+    int k = 0;
+    while (k < u.n && !(tie_equal && F(u.axes[k][0], u.axes[k][0]) == F(a, a))) ++k;
+    if (k == u.n) ++u.n;
+    u.axes[k][u.size[k]++] = a;
+  }
+  return u;
+}
+
+/// Whether the tied axes of `u` carry equal stresses at r (to 1e-12 of the largest normal modulus): the material
+/// responds isotropically, so the tied solution is the untied one.
+bool ties_hold(const FreeUnknowns& u, const PointResponse& r) {
+  const double modulus_scale = r.dS_dE.topLeftCorner<3, 3>().cwiseAbs().maxCoeff();
+  for (int k = 0; k < u.n; ++k)
+    for (int i = 1; i < u.size[k]; ++i)
+      if (!(std::abs(r.S(u.axes[k][i]) - r.S(u.axes[k][0])) <= 1e-12 * modulus_scale)) return false;
+  return true;
+}
+
+/// Solves S_aa = 0 for the diagonal stretches F(a,a) of the unknowns' axes (the others stay as given in F) by
+/// Newton on the Green-Lagrange components E_aa = (F_aa^2 - 1)/2 with the consistent tangent dS/dE (a tied unknown:
+/// the mean of its axes' S_aa and of their rows of dS/dE summed over the columns of each unknown), halving a step
+/// that leaves the admissible range or makes the material fail. F must be diagonal in the free rows/columns.
+/// Returns the response at the solution; F and state_new hold the solution.
+PointResponse newton_free_axes(const Material& material, const Committed& committed, Mat3& F, const FreeUnknowns& u,
+                               double dt, double time, std::vector<double>& state_new) {
   // At most 3 unknowns: fixed-capacity Eigen types, so the per-step solve allocates nothing.
   using Vec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3, 1>;
   using Mat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 3>;
-  std::array<int, 3> axes{};
-  int n = 0;
-  for (int a = 0; a < 3; ++a)
-    if (free[a]) axes[n++] = a;
-
+  const int n = u.n;
   Vec E(n), E_previous(n), step = Vec::Zero(n);
-  for (int k = 0; k < n; ++k) E(k) = 0.5 * (F(axes[k], axes[k]) * F(axes[k], axes[k]) - 1.0);
+  for (int k = 0; k < n; ++k) E(k) = 0.5 * (F(u.axes[k][0], u.axes[k][0]) * F(u.axes[k][0], u.axes[k][0]) - 1.0);
   E_previous = E;
   auto set_stretches = [&](const Vec& strain) {
     for (int k = 0; k < n; ++k) {
       if (!(1.0 + 2.0 * strain(k) > 0.0)) return false;
-      F(axes[k], axes[k]) = std::sqrt(1.0 + 2.0 * strain(k));
+      for (int i = 0; i < u.size[k]; ++i) F(u.axes[k][i], u.axes[k][i]) = std::sqrt(1.0 + 2.0 * strain(k));
     }
     return true;
   };
 
   int backtracks = 0;
-  double last_stretch_step = std::numeric_limits<double>::infinity();
   for (int iteration = 0; iteration <= max_newton_iterations; ++iteration) {
     PointResponse r = set_stretches(E) ? integrate(material, committed, F, dt, state_new) : PointResponse{};
     const bool admissible = (1.0 + 2.0 * E.array() > 0.0).all() && r.status != Status::failed;
@@ -82,34 +105,53 @@ PointResponse solve_free_axes(const Material& material, const Committed& committ
       continue;
     }
     if (n == 0) return r;
-    Vec residual(n);
-    Mat jacobian(n, n);
+    Vec residual = Vec::Zero(n);
+    Mat jacobian = Mat::Zero(n, n);
     double worst_residual = 0.0;  // a loop, not cwiseAbs().maxCoeff(): gcc 12 warns (falsely) on the packet read
-    for (int k = 0; k < n; ++k) {
-      residual(k) = r.S(axes[k]);
-      worst_residual = std::max(worst_residual, std::abs(residual(k)));
-      for (int m = 0; m < n; ++m) jacobian(k, m) = r.dS_dE(axes[k], axes[m]);
-    }
+    for (int k = 0; k < n; ++k)
+      for (int i = 0; i < u.size[k]; ++i) {
+        const int a = u.axes[k][i];
+        residual(k) += r.S(a) / u.size[k];
+        worst_residual = std::max(worst_residual, std::abs(r.S(a)));
+        for (int m = 0; m < n; ++m)
+          for (int j = 0; j < u.size[m]; ++j) jacobian(k, m) += r.dS_dE(a, u.axes[m][j]) / u.size[k];
+      }
     const double modulus_scale = r.dS_dE.topLeftCorner<3, 3>().cwiseAbs().maxCoeff();
-    if (worst_residual <= 1e-15 * modulus_scale || last_stretch_step <= stretch_tolerance) return r;
+    if (worst_residual <= 1e-15 * modulus_scale) return r;
 
     E_previous = E;
-    step = jacobian.fullPivLu().solve(-residual);
+    step = n == 1 ? Vec::Constant(1, -residual(0) / jacobian(0, 0)) : Vec(jacobian.fullPivLu().solve(-residual));
     E = E_previous + step;
     backtracks = 0;
-    last_stretch_step = 0.0;
+    double stretch_step = 0.0;  // the largest correction, relative to max(l, 1)
     for (int k = 0; k < n; ++k) {
       const double l_old = std::sqrt(1.0 + 2.0 * E_previous(k));
       const double l_new = 1.0 + 2.0 * E(k) > 0.0 ? std::sqrt(1.0 + 2.0 * E(k)) : 0.0;
-      last_stretch_step = std::max(last_stretch_step, std::abs(l_new - l_old) / std::max(l_old, 1.0));
+      stretch_step = std::max(stretch_step, std::abs(l_new - l_old) / std::max(l_old, 1.0));
     }
-    if (!std::isfinite(last_stretch_step)) break;
-    // A next correction at round-off level: the point just evaluated (F and state_new hold it) is the solution, no
-    // need to evaluate once more a point that differs by less than 1e-15 l (one material call of ~3 saved).
-    if (last_stretch_step <= negligible_stretch_step) return r;
+    if (!std::isfinite(stretch_step)) break;
+    // The next correction is below the tolerance: the point just evaluated (F and state_new hold it) is the solution
+    // to 1e-12 l, so it is not evaluated once more (one material call of ~3 saved; physics.md 9.7).
+    if (stretch_step <= stretch_tolerance) return r;
   }
   throw std::runtime_error("point driver: free-stretch Newton (S_aa = 0) did not converge in " +
                            std::to_string(max_newton_iterations) + " iterations at " + time_text(time));
+}
+
+/// Solves S_aa = 0 for the diagonal stretches F(a,a) with free[a] (newton_free_axes). Free axes that start at the
+/// same stretch (the lateral axes of a uniaxial path) are first solved as one unknown: an isotropic material keeps
+/// them equal, and equal stretches halve the hyperfoam's transcendental calls (hyperfoam.cpp). If their stresses
+/// then differ (an anisotropic response), the axes are solved one unknown each from the same start.
+PointResponse solve_free_axes(const Material& material, const Committed& committed, Mat3& F,
+                              const std::array<bool, 3>& free, double dt, double time,
+                              std::vector<double>& state_new) {
+  const FreeUnknowns untied = free_unknowns(free, F, false), tied = free_unknowns(free, F, true);
+  if (tied.n == untied.n) return newton_free_axes(material, committed, F, untied, dt, time, state_new);
+  const Mat3 F_start = F;
+  const PointResponse r = newton_free_axes(material, committed, F, tied, dt, time, state_new);
+  if (r.status != Status::failed && ties_hold(tied, r)) return r;
+  F = F_start;
+  return newton_free_axes(material, committed, F, untied, dt, time, state_new);
 }
 
 /// Deformation gradient imposed by the control value in a mode (diagonal entries of free axes are
@@ -263,12 +305,18 @@ PointResult run_point(const Material& material, LoadMode mode, const History& hi
   auto advance = [&](double t, double control, double dt) {
     const std::array<bool, 3> lateral_free = {false, mode == LoadMode::uniaxial_free, mode == LoadMode::uniaxial_free};
     const Mat3 guess = extrapolated_guess(committed.F, F_before, dt_before > 0.0 ? std::min(dt / dt_before, 2.0) : 0.0);
-    if (platen) {
+    Mat3 F = imposed_F(mode, control, guess);
+    const PointResponse r = solve_free_axes(material, committed, F, lateral_free, dt, t, state_new);
+    // A platen only pushes. While the imposed stretch needs a compressive S11 the foam presses on it; a tensile S11
+    // means the foam recovers more slowly than the platen retracts: it is free (S11 = 0) and short of the platen. For a
+    // stable material S11 > 0 at the imposed stretch is the same as a free stretch below it, so the free state is
+    // solved only then (most increments hold contact: one solve instead of two), or when the imposed stretch fails.
+    if (platen && (r.status == Status::failed || r.S(0) > 0.0)) {
       Mat3 F_free = guess;
       const PointResponse free = solve_free_axes(material, committed, F_free, {true, lateral_free[1], lateral_free[2]},
                                                  dt, t, state_free);
       require_success(free, t);
-      if (F_free(0, 0) < 1.0 + control) {  // the foam recovers more slowly than the platen retracts: lift-off
+      if (F_free(0, 0) < 1.0 + control) {  // lift-off
         commit(F_free, state_free, dt);
         PointResponse clear = free;
         clear.S.setZero();  // S = 0 to the Newton tolerance; reported as exactly zero force
@@ -276,8 +324,6 @@ PointResult run_point(const Material& material, LoadMode mode, const History& hi
         return;
       }
     }
-    Mat3 F = imposed_F(mode, control, guess);
-    const PointResponse r = solve_free_axes(material, committed, F, lateral_free, dt, t, state_new);
     require_success(r, t);
     commit(F, state_new, dt);
     record(t, control, r, true);

@@ -95,7 +95,8 @@ Stretches decompose(const Mat3& F) {
       out.failure = "principal stretch squared <= 0";
       return out;
     }
-    out.s(a) = 0.5 * std::log1p(2.0 * e(a));  // s_a = ln l_a = ln(1 + 2 E_a) / 2
+    // s_a = ln l_a = ln(1 + 2 E_a) / 2; equal strains (a uniaxial path: E_2 = E_3) share one logarithm
+    out.s(a) = a > 0 && e(a) == e(a - 1) ? out.s(a - 1) : 0.5 * std::log1p(2.0 * e(a));
   }
   return out;
 }
@@ -104,7 +105,7 @@ ElasticEval assemble(const Response& p, const Stretches& st, const std::string& 
   // S_a = tau_a / l_a^2;  D_ab = dS_a/dE_b = [dtau_a/dln l_b - 2 tau_a delta_ab] / (l_a^2 l_b^2).
   Vec3 S_a, inv_c;
   for (int a = 0; a < 3; ++a) {
-    inv_c(a) = std::exp(-2.0 * st.s(a));
+    inv_c(a) = a > 0 && st.s(a) == st.s(a - 1) ? inv_c(a - 1) : std::exp(-2.0 * st.s(a));
     S_a(a) = p.tau(a) * inv_c(a);
   }
   Mat3 D;

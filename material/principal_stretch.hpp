@@ -33,6 +33,7 @@ double power_difference_quotient(double p, double s, double t);
 /// cancellation-free form q_p = e^{(p-2) s_a} expm1(p d) / expm1(2 d) (limit p/2 e^{(p-2) s_a} at d = 0), with
 /// expm1(2d) and l_a^-4 computed once and q_{-2} = -1/(l_a^2 l_b^2) in closed form (expm1(-2d)/expm1(2d) = -e^{-2d}).
 struct StretchPair {
+  StretchPair() = default;
   StretchPair(const Vec3& s, int a, int b);
   /// q_{alpha-2}, given l_a^alpha.
   double q_alpha_minus2(double alpha, double la_alpha) const;
