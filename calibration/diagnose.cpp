@@ -130,12 +130,9 @@ class CandidateModel {
       for (double x : a) a_sum += x;
       for (std::size_t k = 0; k < a.size(); ++k) s.prony[k].g = a[k] / (1.0 + a_sum);
     }
-    for (const auto& e : effects_at(u)) {
-      if (material::find_effect(e.kind)->needs_viscoelastic)
-        s.effects.insert(s.effects.begin(), e);
-      else
-        s.effects.push_back(e);
-    }
+    const std::vector<material::EffectSpec> candidate = effects_at(u);
+    s.effects.insert(s.effects.end(), candidate.begin(), candidate.end());
+    s.effects = material::composition_order(std::move(s.effects));
     return s;
   }
 
@@ -917,14 +914,12 @@ nlohmann::json effect_json(const material::EffectSpec& e) {
   return j;
 }
 
-/// The "effects" fragment: the baseline's effects plus the winner's (needs_viscoelastic ones first).
+/// The "effects" fragment: the baseline's effects plus the winner's, in material::composition_order.
 nlohmann::json effects_fragment(const material::MaterialSpec& baseline, const CandidateFit& w) {
+  std::vector<material::EffectSpec> all = baseline.effects;
+  all.insert(all.end(), w.effects.begin(), w.effects.end());
   nlohmann::json effects = nlohmann::json::array();
-  for (const auto& e : baseline.effects) effects.push_back(effect_json(e));
-  for (const auto& e : w.effects) {
-    if (material::find_effect(e.kind)->needs_viscoelastic) effects.insert(effects.begin(), effect_json(e));
-    else effects.push_back(effect_json(e));
-  }
+  for (const auto& e : material::composition_order(std::move(all))) effects.push_back(effect_json(e));
   nlohmann::json fragment = {{"effects", effects}};
   return fragment;
 }

@@ -86,14 +86,20 @@ const std::vector<Entry>& entries() {
         "energy reached",
         {{"r", "r: maximum softening 1/r", 2.0, 1.0, 1e3, true, true, true},
          {"m_kPa", "m: energy scale of the softening (kPa = kJ/m^3)", 1.0, 0.0, 1e4, true, true, true},
-         {"beta", "beta: growth of the energy scale with W_max", 0.1, 0.0, 10.0, false, false, false}},
+         {"beta", "beta: growth of the energy scale with W_max", 0.1, 0.0, 10.0, false, false, false},
+         {"relaxation_share",
+          "w: share of the softening eta^w applied to the long-term stress that drives the Prony memory (the rest, "
+          "eta^(1-w), scales the whole stress); 0: eta S_inner; > 0 only as the first effect on a Prony material",
+          0.0, 0.0, 1.0, false, false, false}},
         false,
-        true},
+        true,
+        "relaxation_share"},
        [](const BuildContext& c) -> std::shared_ptr<const Material> {
          MullinsParameters p;
          p.r = c.value.at("r");
          p.m = c.value.at("m_kPa") * kPa;
          p.beta = c.value.at("beta");
+         p.relaxation_share = c.value.at("relaxation_share");
          return std::make_shared<MullinsEffect>(c.inner, c.reference_base, p);
        }},
       {{"strain_dependent_prony",
@@ -201,6 +207,20 @@ void validate_effects(const std::vector<EffectSpec>& effects, const std::string&
   }
 }
 
+std::vector<EffectSpec> composition_order(std::vector<EffectSpec> effects) {
+  auto info = [](const EffectSpec& e) { return find_effect(e.kind); };
+  auto edits_memory = [&](const EffectSpec& e) {
+    const EffectInfo* i = info(e);
+    if (!i || i->memory_parameter.empty()) return false;
+    const auto it = e.parameters.find(i->memory_parameter);
+    return it != e.parameters.end() && it->second > 0.0;
+  };
+  std::stable_partition(effects.begin(), effects.end(), edits_memory);
+  std::stable_partition(effects.begin(), effects.end(),
+                        [&](const EffectSpec& e) { return info(e) && info(e)->needs_viscoelastic; });
+  return effects;
+}
+
 std::shared_ptr<const Material> apply_effects(std::shared_ptr<const Material> base_model,
                                               std::shared_ptr<const Hyperelastic> elastic_base,
                                               const std::vector<EffectSpec>& effects, const std::string& source) {
@@ -220,6 +240,10 @@ std::shared_ptr<const Material> apply_effects(std::shared_ptr<const Material> ba
       const auto it = effects[i].parameters.find(p.name);
       context.value[p.name] = it == effects[i].parameters.end() ? p.default_value : it->second;
     }
+    const std::string& memory = entry.info.memory_parameter;
+    if (!memory.empty() && context.value.at(memory) > 0.0 && !dynamic_cast<const Viscoelastic*>(model.get()))
+      fail(source, i, memory, "> 0 needs a viscoelastic (Prony) material with '" + entry.info.kind +
+                                  "' as the first effect (it edits the Prony memory beneath it)");
     model = entry.build(context);
   }
   return model;

@@ -52,6 +52,9 @@ struct EffectInfo {
   std::vector<EffectParameterInfo> parameters;
   bool needs_viscoelastic = false;   ///< only on a Viscoelastic base model, as the first effect
   bool needs_elastic_base = false;   ///< uses the reference elastic base (energy or initial tangent)
+  /// A parameter whose value > 0 makes the effect edit the Prony memory beneath it (mullins relaxation_share): then
+  /// it must be the first effect on a Viscoelastic model. Empty: none.
+  std::string memory_parameter;
 };
 
 /// Every effect, in a fixed order.
@@ -64,11 +67,16 @@ const EffectInfo* find_effect(const std::string& kind);
 /// "<source>: effects[i].<parameter>: <problem>" (or "effects[i].kind" for an unknown kind).
 void validate_effects(const std::vector<EffectSpec>& effects, const std::string& source = "material");
 
+/// The effects in the order apply_effects needs: needs_viscoelastic ones first, then those whose memory parameter is
+/// > 0, then the rest, each group in list order. Both kinds edit the Prony memory beneath them and do not compose:
+/// with one of each, apply_effects still rejects the list.
+std::vector<EffectSpec> composition_order(std::vector<EffectSpec> effects);
+
 /// Validates, then wraps `base_model` in the effects in list order (the first effect is innermost).
 /// elastic_base: the elastic base of the material (may be null when base_model is itself elastic);
 /// see "reference elastic base" above. Returns base_model itself for an empty list. Throws
-/// InputError as validate_effects, and when strain_dependent_prony is not first or the model is not
-/// viscoelastic, or no elastic base is available for mullins/stiffness_damping.
+/// InputError as validate_effects, and when strain_dependent_prony (or an effect with its memory parameter > 0) is
+/// not first or the model is not viscoelastic, or no elastic base is available for mullins/stiffness_damping.
 std::shared_ptr<const Material> apply_effects(std::shared_ptr<const Material> base_model,
                                               std::shared_ptr<const Hyperelastic> elastic_base,
                                               const std::vector<EffectSpec>& effects,

@@ -9,8 +9,16 @@ namespace cushion::material {
 
 MullinsEffect::MullinsEffect(std::shared_ptr<const Material> inner, std::shared_ptr<const Hyperelastic> energy_base,
                              MullinsParameters parameters)
-    : EffectDecorator(std::move(inner), 1), energy_base_(std::move(energy_base)), p_(parameters) {
+    : EffectDecorator(inner, 1),
+      energy_base_(std::move(energy_base)),
+      memory_(parameters.relaxation_share > 0.0 ? std::dynamic_pointer_cast<const Viscoelastic>(inner) : nullptr),
+      p_(parameters) {
   if (!energy_base_) throw std::invalid_argument("mullins: no elastic base for the energy");
+  if (!(p_.relaxation_share >= 0.0 && p_.relaxation_share <= 1.0))
+    throw std::invalid_argument("mullins: relaxation_share must lie in [0, 1]");
+  if (p_.relaxation_share > 0.0 && !memory_)
+    throw std::invalid_argument(
+        "mullins: relaxation_share > 0 needs a viscoelastic (Prony) material with mullins as the first effect");
   if (!(p_.r > 1.0) || !std::isfinite(p_.r)) throw std::invalid_argument("mullins: r must be > 1");
   if (!(p_.m > 0.0) || !std::isfinite(p_.m)) throw std::invalid_argument("mullins: m must be > 0");
   if (!(p_.beta >= 0.0) || !std::isfinite(p_.beta)) throw std::invalid_argument("mullins: beta must be >= 0");
@@ -37,26 +45,51 @@ PointResponse MullinsEffect::integrate(const Mat3& F_old, const Mat3& F_new, dou
   const double eta_value = 1.0 - std::erf(z) / p_.r;
   // d eta / dW = (2 / (r sqrt(pi) scale)) e^{-z^2}, dW/dE = S_base.
   const double deta_dW = 2.0 * std::exp(-z * z) / (p_.r * std::sqrt(std::numbers::pi) * scale);
-  r.dS_dE = eta_value * r.dS_dE + deta_dW * r.S * e.S.transpose();
-  r.S *= eta_value;
+  if (memory_) drive_memory_with_softened_stress(r, e, eta_value, deta_dW * e.S, dt, state_new);
+  // The softening left outside the memory: eta^(1-w) (w = 0: eta, the same operations as without a share).
+  const double w = p_.relaxation_share, outer = w == 0.0 ? eta_value : std::pow(eta_value, 1.0 - w);
+  const double douter_deta = w == 0.0 ? 1.0 : (1.0 - w) * std::pow(eta_value, -w);
+  r.dS_dE = outer * r.dS_dE + (douter_deta * deta_dW) * r.S * e.S.transpose();
+  r.S *= outer;
   return r;
 }
 
+void MullinsEffect::drive_memory_with_softened_stress(PointResponse& r, const ElasticEval& e, double eta_value,
+                                                      const Vec6& deta_dE, double dt,
+                                                      std::span<double> state_new) const {
+  const double w = p_.relaxation_share, zeta = std::pow(eta_value, w);
+  const Vec6 dzeta_dE = w * std::pow(eta_value, w - 1.0) * deta_dE;
+  // The Viscoelastic's state: S_inf (6), then H_1..H_n (6 each). Store zeta S_e; H_i += q_i (zeta - 1) S_e.
+  Eigen::Map<Vec6>(state_new.data()) = zeta * e.S;
+  double k = 1.0;  // 1 + sum a_i q_i: the memory's instantaneous factor over the increment
+  for (std::size_t i = 0; i < memory_->terms().size(); ++i) {
+    const double q = prony_recursion(dt, memory_->terms()[i].tau).weight;
+    Eigen::Map<Vec6>(state_new.data() + 6 * (i + 1)) += q * (zeta - 1.0) * e.S;
+    k += memory_->relative_to_long_term()[i] * q;
+  }
+  r.dS_dE += k * ((zeta - 1.0) * e.dS_dE + e.S * dzeta_dE.transpose());
+  r.S += (zeta - 1.0) * k * e.S;
+}
+
 Vec6 MullinsEffect::viscous_stress(const Mat3& F, std::span<const double> state) const {
-  return eta(energy_base_->evaluate(F).W, own(state)[0]) * EffectDecorator::viscous_stress(F, state);
+  const double eta_value = eta(energy_base_->evaluate(F).W, own(state)[0]);
+  return std::pow(eta_value, 1.0 - p_.relaxation_share) * EffectDecorator::viscous_stress(F, state);
 }
 
 Mat6c MullinsEffect::complex_tangent(const Mat3& F_base, double omega) const {
   const ElasticEval e = energy_base_->evaluate(F_base);
   const double deta_dW = 2.0 / (p_.r * std::sqrt(std::numbers::pi) * (p_.m + p_.beta * e.W));
   const Mat6 softening = deta_dW * e.S * e.S.transpose();
-  return inner_->complex_tangent(F_base, omega) + softening.cast<std::complex<double>>();
+  const double w = p_.relaxation_share;
+  const std::complex<double> share = memory_ ? w * prony_complex_factor(memory_->terms(), omega) + (1.0 - w) : 1.0;
+  return inner_->complex_tangent(F_base, omega) + share * softening.cast<std::complex<double>>();
 }
 
 std::string MullinsEffect::describe() const {
   std::ostringstream o;
-  o << "Mullins softening (r = " << p_.r << ", m = " << p_.m * 1e3 << " kPa, beta = " << p_.beta << ") over "
-    << inner_->describe();
+  o << "Mullins softening (r = " << p_.r << ", m = " << p_.m * 1e3 << " kPa, beta = " << p_.beta;
+  if (p_.relaxation_share > 0.0) o << ", relaxation share " << p_.relaxation_share;
+  o << ") over " << inner_->describe();
   return o.str();
 }
 

@@ -15,8 +15,21 @@
 ///   C* = C*_inner + (2 / (r sqrt(pi) (m + beta W_b))) S_base (x) S_base   (real: no loss),
 /// with S_inner at the relaxed base taken as the base stress S_base (exact when the inner model
 /// relaxes to the base: hyperelastic or viscoelastic inner).
+///
+/// Relaxation share w in [0, 1] (docs/physics.md 5.2), only directly over a Viscoelastic: the Prony memory is driven
+/// by the softened long-term stress zeta S_e, zeta = eta^w, and the rest of the softening scales the whole stress:
+///   S = eta^(1-w) [zeta S_e + sum a_i H_i[zeta S_e]].
+/// w = 0 is the form above; w = 1 softens the long-term stress before the memory (S = eta S_e + sum a_i H_i[eta S_e]).
+/// The Viscoelastic beneath has already advanced its memory from the stored (softened) state with S_e; the effect
+/// then stores zeta S_e and adds q_i (zeta - 1) S_e to each H_i (q_i the recursion weight), so that
+///   S_visco = S_inner + (zeta - 1) k S_e,  k = 1 + sum a_i q_i,
+///   dS_visco/dE = dS_inner/dE + k [(zeta - 1) C_e + S_e (x) dzeta/dE],  dzeta/dE = w eta^(w-1) deta/dE,
+///   dS/dE = eta^(1-w) dS_visco/dE + (1 - w) eta^(-w) S_visco (x) deta/dE.
+/// complex_tangent about the shaken-down base: C* = C*_inner + [w f(omega) + 1 - w] S_base (x) deta/dE,
+/// f(omega) = 1 + sum a_i i omega tau_i/(1 + i omega tau_i) (the memory sees the softening's part w).
 #include "material/effect_decorator.hpp"
 #include "material/hyperelastic.hpp"
+#include "material/viscoelastic.hpp"
 
 namespace cushion::material {
 
@@ -25,19 +38,21 @@ struct MullinsParameters {
   double r = 2.0;     ///< r [-], > 1: eta >= 1 - 1/r (maximum softening 1/r)
   double m = 1e-3;    ///< m [MPa], > 0: energy scale of the softening
   double beta = 0.1;  ///< beta [-], >= 0: growth of the energy scale with W_max
+  double relaxation_share = 0.0;  ///< w [-] in [0, 1]: share of the softening that drives the Prony memory
 };
 
 class MullinsEffect final : public EffectDecorator {
  public:
-  /// energy_base: the elastic model whose energy drives the softening (not null). Throws
-  /// std::invalid_argument on parameters outside the ranges above.
+  /// energy_base: the elastic model whose energy drives the softening (not null); with relaxation_share > 0 it must be
+  /// the long-term base of `inner`, which must be a Viscoelastic. Throws std::invalid_argument on parameters outside
+  /// the ranges above or a relaxation share > 0 over a model that is not a Viscoelastic.
   MullinsEffect(std::shared_ptr<const Material> inner, std::shared_ptr<const Hyperelastic> energy_base,
                 MullinsParameters parameters);
 
   PointResponse integrate(const Mat3& F_old, const Mat3& F_new, double dt, std::span<const double> state_old,
                           std::span<double> state_new) const override;
   Mat6c complex_tangent(const Mat3& F_base, double omega) const override;
-  /// eta times the inner viscous stress [MPa] (the softening scales the whole inner stress).
+  /// eta^(1-w) times the inner viscous stress [MPa] (with w = 0 the softening scales the whole inner stress).
   Vec6 viscous_stress(const Mat3& F, std::span<const double> state) const override;
   std::string describe() const override;
 
@@ -46,7 +61,13 @@ class MullinsEffect final : public EffectDecorator {
   const MullinsParameters& parameters() const { return p_; }
 
  private:
+  /// w > 0: stores zeta S_e in the Viscoelastic's state, adds q_i (zeta - 1) S_e to each H_i, and turns r from
+  /// S_inner into S_visco with its tangent (formulas above).
+  void drive_memory_with_softened_stress(PointResponse& r, const ElasticEval& e, double eta_value, const Vec6& deta_dE,
+                                         double dt, std::span<double> state_new) const;
+
   std::shared_ptr<const Hyperelastic> energy_base_;
+  std::shared_ptr<const Viscoelastic> memory_;  ///< the Viscoelastic beneath when w > 0, else null
   MullinsParameters p_;
 };
 

@@ -162,6 +162,14 @@ TEST(EffectCatalog, BadInputIsAnInputErrorNamingTheKey) {
   e = apply(visco, {{"friction", {}}, {"strain_dependent_prony", {}}});
   EXPECT_NE(e.find("effects[1].kind"), std::string::npos) << e;
   EXPECT_EQ(apply(visco, {{"strain_dependent_prony", {}}, {"friction", {}}}), "");
+  // A Mullins relaxation share > 0 edits the Prony memory beneath it: mullins first, on a Prony material.
+  e = apply(visco, {{"friction", {}}, {"mullins", {{"relaxation_share", 1.0}}}});
+  EXPECT_NE(e.find("foam.json: effects[1].relaxation_share: > 0 needs a viscoelastic"), std::string::npos) << e;
+  e = apply(foam, {{"mullins", {{"relaxation_share", 0.5}}}});
+  EXPECT_NE(e.find("effects[0].relaxation_share: > 0"), std::string::npos) << e;
+  e = apply(visco, {{"mullins", {{"relaxation_share", 1.5}}}});
+  EXPECT_NE(e.find("effects[0].relaxation_share: must be >= 0 and <= 1"), std::string::npos) << e;
+  EXPECT_EQ(apply(visco, {{"mullins", {{"relaxation_share", 1.0}}}, {"friction", {}}}), "");
   // validate_effects alone (no model needed) gives the same messages.
   e = input_error([] { validate_effects({{"mullins", {{"m", 1.0}}}}, "x.json"); });
   EXPECT_NE(e.find("x.json: effects[0].m: unknown parameter of 'mullins'"), std::string::npos) << e;
