@@ -90,7 +90,7 @@ const std::vector<Entry>& entries() {
          {"relaxation_share",
           "w: share of the softening eta^w applied to the long-term stress that drives the Prony memory (the rest, "
           "eta^(1-w), scales the whole stress); 0: eta S_inner; > 0 only as the first effect on a Prony material",
-          0.0, 0.0, 1.0, false, false, false}},
+          0.0, 0.0, 1.0, false, true, false, 0.5}},
         false,
         true,
         "relaxation_share"},
