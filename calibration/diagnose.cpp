@@ -61,11 +61,11 @@ class CandidateModel {
   CandidateModel(const material::MaterialSpec& base, std::vector<material::EffectSpec> effects, const Campaign& campaign,
                  const std::vector<TestNoise>& noise, const DiagnoseOptions& options)
       : base_(base), effects_(std::move(effects)), campaign_(campaign), noise_(noise), options_(options) {
-    // A memory parameter (mullins relaxation_share) is fitted only where its effect can edit the Prony memory: on a
-    // Prony base, with no needs_viscoelastic effect beside it (material::composition_order); else held at 0.
-    bool memory_blocked = base_.prony.empty();
-    for (const auto* list : {&base_.effects, &effects_})
-      for (const auto& e : *list) memory_blocked = memory_blocked || material::find_effect(e.kind)->needs_viscoelastic;
+    // A memory parameter (mullins relaxation_share) is fitted only where its effect can edit the Prony memory
+    // (material::memory_edit_possible); else held at 0.
+    std::vector<material::EffectSpec> all = base_.effects;
+    all.insert(all.end(), effects_.begin(), effects_.end());
+    const bool memory_blocked = !material::memory_edit_possible(all, !base_.prony.empty());
     for (std::size_t e = 0; e < effects_.size(); ++e) {
       const material::EffectInfo* info = material::find_effect(effects_[e].kind);
       for (const auto& p : info->parameters) {

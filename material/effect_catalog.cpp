@@ -207,6 +207,13 @@ void validate_effects(const std::vector<EffectSpec>& effects, const std::string&
   }
 }
 
+bool memory_edit_possible(const std::vector<EffectSpec>& effects, bool prony) {
+  return prony && std::none_of(effects.begin(), effects.end(), [](const EffectSpec& e) {
+           const EffectInfo* info = find_effect(e.kind);
+           return info && info->needs_viscoelastic;
+         });
+}
+
 std::vector<EffectSpec> composition_order(std::vector<EffectSpec> effects) {
   auto info = [](const EffectSpec& e) { return find_effect(e.kind); };
   auto edits_memory = [&](const EffectSpec& e) {

@@ -67,6 +67,10 @@ const EffectInfo* find_effect(const std::string& kind);
 /// "<source>: effects[i].<parameter>: <problem>" (or "effects[i].kind" for an unknown kind).
 void validate_effects(const std::vector<EffectSpec>& effects, const std::string& source = "material");
 
+/// Whether an effect of `effects` may set its memory parameter > 0 on a base with (`prony`) or without Prony terms:
+/// only on a Prony base with no needs_viscoelastic effect in the list (both edit the memory beneath them).
+bool memory_edit_possible(const std::vector<EffectSpec>& effects, bool prony);
+
 /// The effects in the order apply_effects needs: needs_viscoelastic ones first, then those whose memory parameter is
 /// > 0, then the rest, each group in list order. Both kinds edit the Prony memory beneath them and do not compose:
 /// with one of each, apply_effects still rejects the list.

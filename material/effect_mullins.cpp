@@ -59,14 +59,10 @@ void MullinsEffect::drive_memory_with_softened_stress(PointResponse& r, const El
                                                       std::span<double> state_new) const {
   const double w = p_.relaxation_share, zeta = std::pow(eta_value, w);
   const Vec6 dzeta_dE = w * std::pow(eta_value, w - 1.0) * deta_dE;
-  // The Viscoelastic's state: S_inf (6), then H_1..H_n (6 each). Store zeta S_e; H_i += q_i (zeta - 1) S_e.
+  // The Viscoelastic's state starts with the long-term stress it stored (S_e): store zeta S_e there, and let the
+  // memory take the difference as if the long-term stress had risen by (zeta - 1) S_e more.
   Eigen::Map<Vec6>(state_new.data()) = zeta * e.S;
-  double k = 1.0;  // 1 + sum a_i q_i: the memory's instantaneous factor over the increment
-  for (std::size_t i = 0; i < memory_->terms().size(); ++i) {
-    const double q = prony_recursion(dt, memory_->terms()[i].tau).weight;
-    Eigen::Map<Vec6>(state_new.data() + 6 * (i + 1)) += q * (zeta - 1.0) * e.S;
-    k += memory_->relative_to_long_term()[i] * q;
-  }
+  const double k = 1.0 + memory_->add_to_memory(state_new, dt, (zeta - 1.0) * e.S);  // 1 + sum a_i q_i
   r.dS_dE += k * ((zeta - 1.0) * e.dS_dE + e.S * dzeta_dE.transpose());
   r.S += (zeta - 1.0) * k * e.S;
 }

@@ -32,12 +32,8 @@ PointResponse StrainDependentPronyEffect::integrate(const Mat3& F_old, const Mat
   if (w_ > 0.0) {  // weight the increment that entered each H_i by phi^w (the inner added it with weight 1)
     const Vec6 dS_inf = S_inf - Eigen::Map<const Vec6>(state_old.data());
     const double phi_w = std::pow(phi, w_);
-    Vec6 A_dS = Vec6::Zero();  // sum a_i (1 - e^{-x_i})/x_i dS_inf
-    for (std::size_t i = 0; i < visco_->terms().size(); ++i) {
-      const double weight = prony_recursion(dt, visco_->terms()[i].tau).weight;
-      Eigen::Map<Vec6>(state_new.data() + 6 * (1 + i)) += (phi_w - 1.0) * weight * dS_inf;
-      A_dS += visco_->relative_to_long_term()[i] * weight * dS_inf;
-    }
+    // sum a_i (1 - e^{-x_i})/x_i dS_inf, while each H_i takes its weighted increment
+    const Vec6 A_dS = visco_->add_to_memory(state_new, dt, (phi_w - 1.0) * dS_inf) * dS_inf;
     V += (phi_w - 1.0) * A_dS;
     dV_dE = phi_w * A_C + w_ * std::pow(phi, w_ - 1.0) * A_dS * dphi_dE.transpose();
   }

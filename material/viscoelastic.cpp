@@ -123,6 +123,16 @@ PointResponse Viscoelastic::integrate(const Mat3& /*F_old*/, const Mat3& F_new, 
   return r;
 }
 
+double Viscoelastic::add_to_memory(std::span<double> state, double dt, const Vec6& dS) const {
+  double factor = 0.0;
+  for (std::size_t i = 0; i < terms_.size(); ++i) {
+    const double q = prony_recursion(dt, terms_[i].tau).weight;
+    Eigen::Map<Vec6>(state.data() + 6 * (i + 1)) += q * dS;
+    factor += a_[i] * q;
+  }
+  return factor;
+}
+
 Vec6 Viscoelastic::viscous_stress(const Mat3& /*F*/, std::span<const double> state) const {
   Vec6 S = Vec6::Zero();
   for (std::size_t i = 0; i < terms_.size(); ++i) S += a_[i] * Eigen::Map<const Vec6>(state.data() + 6 * (i + 1));

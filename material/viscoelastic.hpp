@@ -63,6 +63,11 @@ class Viscoelastic final : public Material {
   const std::vector<PronyTerm>& terms() const { return terms_; }
   /// a_i = g_i / (1 - sum g): Prony moduli relative to the long-term modulus.
   const std::vector<double>& relative_to_long_term() const { return a_; }
+  /// Adds q_i dS [MPa] to every memory H_i of `state` (a state this model wrote over an increment dt [s]; q_i =
+  /// (1 - e^{-x})/x, x = dt/tau_i): as if the long-term stress had risen by dS more over that increment. Returns
+  /// sum a_i q_i, the factor of that rise on the viscous stress. For effects that change what enters the memory
+  /// (strain_dependent_prony's history share, mullins' relaxation share).
+  double add_to_memory(std::span<double> state, double dt, const Vec6& dS) const;
 
  private:
   std::shared_ptr<const Hyperelastic> long_term_;
