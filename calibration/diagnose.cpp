@@ -196,7 +196,9 @@ enum class Scan {
   /// of a two-parameter effect scanned together (all combinations) found foreign Jenkins campaign c047 (bench seed
   /// 2025: friction named, 21/40 singles) but led LM into a worse basin on the Bouc-Wen case of
   /// DiagnoseForeignFittedBaseline (friction chi2 3248 against 2167 from the scan in turn; 4 LM iterations from each
-  /// start did not tell which would end lower): not taken (measured 2026-11-25).
+  /// start did not tell which would end lower): not taken (measured 2026-11-25). A parameter the catalogue pairs with
+  /// another (scan_with: the air flow's trapped-air modulus with its permeability, which set the Maxwell time between
+  /// them) is scanned with it on every combination (scan_pair) instead; only here, not in added_effect.
   effect,
   /// The parameters of the candidate's last effect only, in turn, the base and the other effects held: a pair starts
   /// from the best single's fit (its base and effect) and the added effect's own single fit, and only the added effect
@@ -248,6 +250,33 @@ double scan_parameter(const CandidateModel& m, std::vector<double>& u, std::size
   return keep_best(m, u, trials, best, spare);
 }
 
+/// Parameters i and j scanned together: u_i and u_j with every combination of their scan_values (each own value
+/// included, the pair (u_i, u_j) itself excluded), the best kept in u (keep_best).
+double scan_pair(const CandidateModel& m, std::vector<double>& u, std::size_t i, std::size_t j, double best,
+                 SpareCores* spare) {
+  std::vector<double> vi = scan_values(m.free()[i], u[i]), vj = scan_values(m.free()[j], u[j]);
+  vi.push_back(u[i]), vj.push_back(u[j]);
+  std::vector<std::vector<double>> trials;
+  for (double a : vi)
+    for (double b : vj) {
+      if (a == u[i] && b == u[j]) continue;
+      trials.push_back(u);
+      trials.back()[i] = a, trials.back()[j] = b;
+    }
+  return keep_best(m, u, trials, best, spare);
+}
+
+/// The free parameter of the same effect as parameter i that the catalogue scans together with it (scan_with), or
+/// npos.
+std::size_t scan_partner(const CandidateModel& m, std::size_t i) {
+  const FreeParameter& f = m.free()[i];
+  if (f.is_base() || f.info->scan_with.empty()) return FreeParameter::npos;
+  for (std::size_t j = 0; j < m.free().size(); ++j)
+    if (!m.free()[j].is_base() && m.free()[j].effect == f.effect && m.free()[j].info->name == f.info->scan_with)
+      return j;
+  return FreeParameter::npos;
+}
+
 /// Half a decade either side of each of the given effect parameters that is log-scale (in turn, keep_best).
 double refine_start(const CandidateModel& m, std::vector<double>& u, const std::vector<std::size_t>& effect,
                     double best, SpareCores* spare) {
@@ -279,7 +308,19 @@ std::vector<double> scan_start(const CandidateModel& m, std::vector<double> u, S
   }
   if (scanned.empty()) scanned.resize(u.size()), std::iota(scanned.begin(), scanned.end(), std::size_t{0});
   double best = m.chi2_at(u.data());
-  for (std::size_t i : scanned) best = scan_parameter(m, u, i, best, spare);
+  // Scan partners only in a single's scan: a pair's added effect starts from its own single fit, whose time scale the
+  // joint scan has placed already; rescanning both from there jumped to a lower-chi2 trial in a worse basin (the
+  // hidden strain-dependent Prony case of test_diagnose.cpp: its pair with air flow ended at 3.7x noise, not 1.3x).
+  auto partner = [&](std::size_t i) { return scan == Scan::added_effect ? FreeParameter::npos : scan_partner(m, i); };
+  std::vector<std::size_t> in_turn;  // the scanned parameters without a scan partner among them
+  for (std::size_t i : scanned) {
+    const std::size_t j = partner(i);
+    if (j != FreeParameter::npos && std::find(scanned.begin(), scanned.end(), j) != scanned.end())
+      best = scan_pair(m, u, i, j, best, spare);
+    else if (std::none_of(scanned.begin(), scanned.end(), [&](std::size_t k) { return partner(k) == i; }))
+      in_turn.push_back(i);
+  }
+  for (std::size_t i : in_turn) best = scan_parameter(m, u, i, best, spare);
   std::erase_if(scanned, [&m](std::size_t i) { return m.free()[i].is_base(); });
   refine_start(m, u, scanned, best, spare);
   return u;

@@ -49,7 +49,7 @@ const std::vector<Entry>& entries() {
          {"air_modulus_kPa",
           "M: stiffness of the air trapped in the cells (isothermal air at 1 atm: about 100 kPa), in series with the "
           "flow: a Maxwell branch of time eta R^2/(8 K M); 0: no trapped-air spring (Darcy dashpot)",
-          0.0, 0.0, 1e9, false, true, true, 100.0},
+          0.0, 0.0, 1e9, false, true, true, 100.0, "permeability_mm2"},
          {"air_modulus_exponent",
           "r: the trapped air stiffens as the cells shrink, M(J) = M J^-r: 0 constant, 1 isothermal ideal gas (Boyle)",
           0.0, 0.0, 5.0, false, false, false},

@@ -43,6 +43,10 @@ struct EffectParameterInfo {
   /// parameter whose default switches a branch off (air_modulus_kPa 0: no trapped-air spring), so that the
   /// fit starts where the parameter matters.
   double fit_start = 0;
+  /// Another parameter of the same effect that diagnose's start search scans together with this one (every
+  /// combination of both parameters' trial values) instead of each in turn: for two parameters that set one time scale
+  /// between them, where moving either alone leaves the effect out of its basin (empty: scanned in turn).
+  std::string scan_with;
 };
 
 /// One effect of the catalogue.

@@ -360,24 +360,34 @@ std::vector<CampaignKind> campaign_mix(int count, int pairs, int controls, std::
 }
 
 void write_campaign_set(const fs::path& dir, int count, int pairs, int controls, std::uint64_t seed,
-                        const TestPlan& plan, std::ostream& log, BaseRefitUse refit) {
-  fs::create_directories(dir);
+                        const TestPlan& plan, std::ostream& log, BaseRefitUse refit, const std::set<std::string>& only) {
   const std::vector<CampaignKind> kinds = campaign_mix(count, pairs, controls, seed);
+  auto name_of = [](std::size_t i) {
+    std::ostringstream name;
+    name << "c" << std::setw(3) << std::setfill('0') << i;
+    return name.str();
+  };
+  for (const std::string& n : only) {  // before anything is written
+    std::size_t i = 0;
+    while (i < kinds.size() && name_of(i) != n) ++i;
+    if (i == kinds.size()) throw std::runtime_error("--only " + n + ": no such campaign in a set of " + std::to_string(count));
+  }
+  fs::create_directories(dir);
   std::ofstream index(dir / "index.csv");
   index << "campaign,families,forms\n";
   for (std::size_t i = 0; i < kinds.size(); ++i) {
     const auto t0 = std::chrono::steady_clock::now();
-    std::ostringstream name;
-    name << "c" << std::setw(3) << std::setfill('0') << i;
+    const std::string name = name_of(i);
+    if (!only.empty() && !only.count(name)) continue;
     Random protocol_random(mix_seed(mix_seed(seed, i), 4242));
     const TestPlan campaign_plan = plan.unrecorded_protocol ? drawn_protocol(plan, protocol_random) : plan;
-    const CampaignTruth truth = draw_truth(name.str(), kinds[i], mix_seed(seed, i), campaign_plan, refit);
-    write_campaign(truth, campaign_plan, dir / name.str());
+    const CampaignTruth truth = draw_truth(name, kinds[i], mix_seed(seed, i), campaign_plan, refit);
+    write_campaign(truth, campaign_plan, dir / name);
     const std::string families = kinds[i].families.empty() ? "control" : join(kinds[i].families, "+");
     const std::string forms = kinds[i].forms.empty() ? "-" : join(kinds[i].forms, "+");
-    index << name.str() << "," << families << "," << forms << "\n";
+    index << name << "," << families << "," << forms << "\n";
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    log << name.str() << ": " << families << " (" << forms << "), base " << truth.base.family << " "
+    log << name << ": " << families << " (" << forms << "), base " << truth.base.family << " "
         << std::setprecision(3) << truth.base.density_kg_m3 << " kg/m3, s_e(50%) "
         << truth.base.elastic_stress_kPa(0.5) << " kPa";
     for (const auto& [family, ratios] : truth.effect_over_noise) log << ", " << family << " " << largest(ratios) << "x noise";

@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -101,8 +102,10 @@ void write_campaign(const CampaignTruth& truth, const TestPlan& plan, const std:
 /// the families and, within a family, over its forms; shuffled with the seed.
 std::vector<CampaignKind> campaign_mix(int count, int pairs, int controls, std::uint64_t seed);
 
-/// Writes the whole set: DIR/c000 ... and DIR/index.csv (campaign, families, forms); logs one line each.
+/// Writes the whole set: DIR/c000 ... and DIR/index.csv (campaign, families, forms); logs one line each. `only`
+/// non-empty: just the campaigns so named, each the same as in the whole set (every campaign has its own seed).
 void write_campaign_set(const std::filesystem::path& dir, int count, int pairs, int controls, std::uint64_t seed,
-                        const TestPlan& plan, std::ostream& log, BaseRefitUse refit = BaseRefitUse::none);
+                        const TestPlan& plan, std::ostream& log, BaseRefitUse refit = BaseRefitUse::none,
+                        const std::set<std::string>& only = {});
 
 }  // namespace foreign_bench

@@ -1,7 +1,7 @@
 // foreign_campaigns --out DIR --count N --seed S [--pairs P] [--controls C] [--dynamic-noise amplitude|reading]
 //                   [--protocol recorded|unrecorded]
 //                   [--extra-rate MM_MIN]... [--extra-preload STRAIN]... [--extra-hold S]...
-//                   [--base-refit none|report|scale]
+//                   [--base-refit none|report|scale] [--only NAME]...
 // Test-data generation for the diagnose benchmark (issue 15), independent of cushion's material/ and
 // calibration/: writes N seeded campaigns DIR/c000 ... in cushion's campaign format, each with truth.json,
 // and DIR/index.csv. Defaults: P = C = round(N/6). Deterministic for a seed.
@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <exception>
 #include <iostream>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -22,7 +23,7 @@ int usage(const std::string& message) {
       << "usage: foreign_campaigns --out DIR --count N --seed S [--pairs P] [--controls C]\n"
          "                         [--dynamic-noise amplitude|reading] [--protocol recorded|unrecorded]\n"
          "                         [--extra-rate MM_MIN]... [--extra-preload STRAIN]... [--extra-hold S]...\n"
-         "                         [--base-refit none|report|scale]\n"
+         "                         [--base-refit none|report|scale] [--only NAME]...\n"
          "  N campaigns DIR/c000... (P with two effect families, C controls without effect, the rest one\n"
          "  family each, balanced over families and forms), each campaign.json + CSV + truth.json, and\n"
          "  DIR/index.csv. Defaults: P = C = round(N/6); dynamic noise relative to the oscillating force;\n"
@@ -32,7 +33,8 @@ int usage(const std::string& message) {
          "  truth and the other records unchanged.\n"
          "  --base-refit: report also records in truth.json what a refitted base of the generator's own family\n"
          "  leaves of the effects; scale sizes each effect by that instead of by its difference from the true\n"
-         "  base (default none).\n";
+         "  base (default none).\n"
+         "  --only: write just the campaign so named (c038: the 39th), the same as in the whole set.\n";
   return message.empty() ? 0 : 2;
 }
 
@@ -43,6 +45,7 @@ int main(int argc, char** argv) {
   long count = -1, pairs = -1, controls = -1;
   long long seed = -1;
   std::vector<double> extra_rates, extra_preloads, extra_holds;
+  std::set<std::string> only;
   try {
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
@@ -57,6 +60,7 @@ int main(int argc, char** argv) {
       else if (a == "--dynamic-noise") dynamic_noise = v;
       else if (a == "--protocol") protocol = v;
       else if (a == "--base-refit") base_refit = v;
+      else if (a == "--only") only.insert(v);
       else if (a == "--extra-rate")
         extra_rates.push_back(std::stod(v));
       else if (a == "--extra-preload")
@@ -92,7 +96,8 @@ int main(int argc, char** argv) {
                                       static_cast<std::uint64_t>(seed), plan, std::cout,
                                       base_refit == "scale"    ? foreign_bench::BaseRefitUse::scale
                                       : base_refit == "report" ? foreign_bench::BaseRefitUse::report
-                                                               : foreign_bench::BaseRefitUse::none);
+                                                               : foreign_bench::BaseRefitUse::none,
+                                      only);
   } catch (const std::exception& e) {
     std::cerr << "foreign_campaigns: " << e.what() << "\n";
     return 1;

@@ -236,5 +236,27 @@ TEST(ForeignCampaign, ExtraTestsLeaveTheTruthAndThePlanRecordsUnchanged) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(ForeignCampaign, OneCampaignWrittenAloneIsTheSameAsInTheWholeSet) {
+  // --only: campaigns c002 and c004 of a 6-campaign set written alone are byte for byte those of the whole set, and
+  // nothing else is written; an unknown name is refused before anything is written.
+  const auto dir = std::filesystem::temp_directory_path() / "cushion_foreign_only";
+  std::filesystem::remove_all(dir);
+  const TestPlan plan = standard_plan();
+  write_campaign_set(dir / "all", 6, 1, 1, 11, plan, std::cout);
+  write_campaign_set(dir / "only", 6, 1, 1, 11, plan, std::cout, BaseRefitUse::none, {"c002", "c004"});
+  auto text = [](const std::filesystem::path& f) {
+    std::ifstream in(f);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  for (const char* c : {"c002", "c004"})
+    for (const char* f : {"campaign.json", "truth.json", "qs_12.csv", "qs_600.csv", "dyn_50.csv"})
+      EXPECT_EQ(text(dir / "all" / c / f), text(dir / "only" / c / f)) << c << "/" << f;
+  EXPECT_FALSE(std::filesystem::exists(dir / "only" / "c000"));
+  EXPECT_THROW(write_campaign_set(dir / "bad", 6, 1, 1, 11, plan, std::cout, BaseRefitUse::none, {"c006"}),
+               std::runtime_error);
+  EXPECT_FALSE(std::filesystem::exists(dir / "bad"));
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace foreign_bench

@@ -3,6 +3,7 @@
 // input (unknown kind or parameter, out-of-range value, wrong order) is an InputError naming it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
 
 #include "material/effect_catalog.hpp"
@@ -53,6 +54,14 @@ TEST(EffectCatalog, EveryEntryIsSelfDescribing) {
         EXPECT_LE(p.fit_start, p.max) << p.name;
       }
       EXPECT_FALSE(p.description.empty()) << p.name;
+      if (!p.scan_with.empty()) {  // a fitted partner of the same effect, not the parameter itself
+        EXPECT_TRUE(p.fit) << p.name;
+        EXPECT_NE(p.scan_with, p.name);
+        const auto partner = std::find_if(e.parameters.begin(), e.parameters.end(),
+                                          [&p](const EffectParameterInfo& q) { return q.name == p.scan_with; });
+        ASSERT_NE(partner, e.parameters.end()) << p.name << " scan_with " << p.scan_with;
+        EXPECT_TRUE(partner->fit) << p.scan_with;
+      }
     }
   }
   EXPECT_EQ(kinds, expected);
