@@ -73,7 +73,11 @@ class CandidateModel {
           effects_[e].parameters[p.name] = 0.0;  // a pair started from a single's fit may carry the single's value
           continue;
         }
-        if (!p.fit) continue;
+        if (!p.fit) {
+          if (p.diagnose_value && !effects_[e].parameters.count(p.name))
+            effects_[e].parameters[p.name] = *p.diagnose_value;  // the form diagnose fits (pneumatic drag)
+          continue;
+        }
         FreeParameter f{e, FreeParameter::npos, FreeParameter::npos, FreeParameter::npos, &p};
         const double start = p.fit_start > 0.0 ? p.fit_start : p.default_value;
         if (p.log_scale) {

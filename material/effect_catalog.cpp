@@ -5,6 +5,7 @@
 #include <functional>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 #include "material/effect_friction.hpp"
 #include "material/effect_mullins.hpp"
@@ -56,10 +57,16 @@ const std::vector<Entry>& entries() {
          {"rate_exponent",
           "q: flow law p = c(J) sign(v)|v|^q of the volumetric rate v [1/s]: 1 Darcy, < 1 resistance thinning with "
           "rate, > 1 inertial (Forchheimer-like) losses",
-          1.0, 0.1, 3.0, false, false, false}}},
+          1.0, 0.1, 3.0, false, false, false},
+         {"pressure_share",
+          "s: share of the air's stress that is an isotropic pressure (a laterally free specimen inflates under it and "
+          "the damping saturates); the rest, 1 - s, is a drag c(J) D along the rate of deformation (an axial dashpot "
+          "there); both the same in a laterally confined test; s < 1 needs rate_exponent 1",
+          1.0, 0.0, 1.0, false, false, false, 0.0, "", 0.0}}},
        [](const BuildContext& c) -> std::shared_ptr<const Material> {
          PneumaticParameters p;
          p.rate_exponent = c.value.at("rate_exponent");
+         p.pressure_share = c.value.at("pressure_share");
          p.drainage_length = c.value.at("drainage_length_mm");
          p.permeability = c.value.at("permeability_mm2");
          p.permeability_exponent = c.value.at("permeability_exponent");
@@ -251,7 +258,11 @@ std::shared_ptr<const Material> apply_effects(std::shared_ptr<const Material> ba
     if (!memory.empty() && context.value.at(memory) > 0.0 && !dynamic_cast<const Viscoelastic*>(model.get()))
       fail(source, i, memory, "> 0 needs a viscoelastic (Prony) material with '" + entry.info.kind +
                                   "' as the first effect (it edits the Prony memory beneath it)");
-    model = entry.build(context);
+    try {  // a combination of values the model refuses (each value alone is in range): name the effect
+      model = entry.build(context);
+    } catch (const std::invalid_argument& e) {
+      fail(source, i, "", e.what());
+    }
   }
   return model;
 }

@@ -16,6 +16,7 @@
 /// LONG-TERM base when the base model is Viscoelastic, else the elastic base.
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,7 +47,10 @@ struct EffectParameterInfo {
   /// Another parameter of the same effect that diagnose's start search scans together with this one (every
   /// combination of both parameters' trial values) instead of each in turn: for two parameters that set one time scale
   /// between them, where moving either alone leaves the effect out of its basin (empty: scanned in turn).
-  std::string scan_with;
+  std::string scan_with{};
+  /// For a parameter diagnose does not fit (fit false): the value it holds there instead of the default, where the
+  /// default keeps a form users' files expect and diagnose fits another (pneumatic pressure_share 0: the drag).
+  std::optional<double> diagnose_value{};
 };
 
 /// One effect of the catalogue.

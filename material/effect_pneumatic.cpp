@@ -1,5 +1,6 @@
 #include "material/effect_pneumatic.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -8,7 +9,7 @@
 namespace cushion::material {
 
 PneumaticEffect::PneumaticEffect(std::shared_ptr<const Material> inner, PneumaticParameters parameters)
-    : EffectDecorator(std::move(inner), 1), p_(parameters) {
+    : EffectDecorator(std::move(inner), parameters.pressure_share < 1.0 ? 7 : 1), p_(parameters) {
   auto positive = [](double x) { return x > 0.0 && std::isfinite(x); };
   if (!positive(p_.drainage_length)) throw std::invalid_argument("pneumatic: drainage length must be > 0");
   if (!positive(p_.permeability)) throw std::invalid_argument("pneumatic: permeability must be > 0");
@@ -20,6 +21,10 @@ PneumaticEffect::PneumaticEffect(std::shared_ptr<const Material> inner, Pneumati
     throw std::invalid_argument("pneumatic: air modulus exponent must be in [0, 5]");
   if (!(p_.rate_exponent >= 0.1 && p_.rate_exponent <= 3.0))
     throw std::invalid_argument("pneumatic: rate exponent must be in [0.1, 3]");
+  if (!(p_.pressure_share >= 0.0 && p_.pressure_share <= 1.0))
+    throw std::invalid_argument("pneumatic: pressure share must be in [0, 1]");
+  if (p_.pressure_share < 1.0 && p_.rate_exponent != 1.0)
+    throw std::invalid_argument("pneumatic: a drag share (pressure share < 1) needs the linear flow (rate exponent 1)");
 }
 
 namespace {
@@ -88,18 +93,20 @@ double PneumaticEffect::coefficient(double J) const {
 PointResponse PneumaticEffect::integrate(const Mat3& F_old, const Mat3& F_new, double dt,
                                          std::span<const double> state_old, std::span<double> state_new) const {
   PointResponse r = integrate_inner(F_old, F_new, dt, state_old, state_new);
-  const double p_old = own(state_old)[0];
-  own(state_new)[0] = p_old;
+  const std::span<const double> own_old = own(state_old);
+  const std::span<double> own_new = own(state_new);
+  std::copy(own_old.begin(), own_old.end(), own_new.begin());
   if (r.status == Status::failed || dt == 0.0) return r;
-  const double J = F_new.determinant(), J_old = F_old.determinant();
-  const auto [p, dp_dJ] = p_.rate_exponent == 1.0 ? darcy_pressure(J, J_old, dt, p_old)
-                                                   : power_law_pressure(J, J_old, dt, p_old);
-  own(state_new)[0] = p;
+  const double J = F_new.determinant(), J_old = F_old.determinant(), share = p_.pressure_share;
+  const auto [p, dp_dJ] = p_.rate_exponent == 1.0 ? darcy_pressure(J, J_old, dt, own_old[0])
+                                                   : power_law_pressure(J, J_old, dt, own_old[0]);
+  own_new[0] = p;
   const Mat3 Ci = (F_new.transpose() * F_new).inverse();
   const Vec6 Ci_v = to_voigt_stress(Ci);
-  r.S += -p * Ci_v;
+  r.S += -share * p * Ci_v;
   // dS/dE = -C^{-1} (x) dp/dE - p dC^{-1}/dE, dp/dE = dp/dJ J C^{-1}.
-  r.dS_dE += -dp_dJ * J * Ci_v * Ci_v.transpose() - p * dCinv_dE(Ci);
+  r.dS_dE += share * (-dp_dJ * J * Ci_v * Ci_v.transpose() - p * dCinv_dE(Ci));
+  if (share < 1.0) add_drag(r, F_old, F_new, dt, own_old.subspan(1), own_new.subspan(1), 1.0 - share);
   if (!r.S.allFinite()) {
     r.status = Status::failed;
     r.message = "pneumatic: non-finite stress";
@@ -120,6 +127,35 @@ PneumaticEffect::Pressure PneumaticEffect::darcy_pressure(double J, double J_old
   const double B = 1.0 + dt * M * std::pow(J, n) / c0,
                dB = dt * M * n * std::pow(J, n - 1.0) / c0 + dt * dM * std::pow(J, n) / c0;
   return {A / B, (dA * B - A * dB) / (B * B)};
+}
+
+void PneumaticEffect::add_drag(PointResponse& r, const Mat3& F_old, const Mat3& F_new, double dt,
+                               std::span<const double> Y_old, std::span<double> Y_new, double weight) const {
+  const Mat3 C = F_new.transpose() * F_new, Ci = C.inverse();
+  const Mat3 dE = 0.5 * (C - F_old.transpose() * F_old);
+  const double J = F_new.determinant(), c = coefficient(J), n = p_.permeability_exponent;
+  // Y and its derivative dY[X] = alpha X + (C^-1 : X) Z along a strain direction X (dJ = J C^-1 : X).
+  double alpha = c / dt;
+  Mat3 Y = alpha * dE, Z = -n * alpha * dE;  // dashpot: alpha = c(J)/dt, d alpha/dJ = -n alpha/J
+  if (!std::isinf(p_.air_modulus)) {
+    // Maxwell: Y = (Y_old + M dE)/B, B = 1 + dt M(J)/c(J) = 1 + dt M J^n/c0 (as in darcy_pressure).
+    const double M = air_modulus(J), dM = -p_.air_modulus_exponent * M / J, c0 = coefficient(1.0);
+    const double B = 1.0 + dt * M * std::pow(J, n) / c0,
+                 dB = dt * M * n * std::pow(J, n - 1.0) / c0 + dt * dM * std::pow(J, n) / c0;
+    alpha = M / B;
+    Y = (from_voigt_stress(Eigen::Map<const Vec6>(Y_old.data())) + M * dE) / B;
+    Z = J * (dM * dE - dB * Y) / B;
+  }
+  Eigen::Map<Vec6>(Y_new.data()) = to_voigt_stress(Y);
+  const Mat3 CiYCi = Ci * Y * Ci;
+  r.S += weight * to_voigt_stress(CiYCi);
+  // dS[X] = -2 C^-1 X C^-1 Y C^-1 - 2 C^-1 Y C^-1 X C^-1 + C^-1 dY[X] C^-1 (dC^-1 = -2 C^-1 X C^-1), column by column.
+  for (int k = 0; k < 6; ++k) {
+    const Mat3 X = from_voigt_strain(Vec6::Unit(k));
+    const Mat3 dY = alpha * X + Ci.cwiseProduct(X).sum() * Z;
+    const Mat3 dS = -2.0 * (Ci * X * CiYCi + CiYCi * X * Ci) + Ci * dY * Ci;
+    r.dS_dE.col(k) += weight * to_voigt_stress(dS);
+  }
 }
 
 PneumaticEffect::Pressure PneumaticEffect::power_law_pressure(double J, double J_old, double dt, double p_old) const {
@@ -145,9 +181,12 @@ Mat6c PneumaticEffect::complex_tangent(const Mat3& F_base, double omega) const {
     throw std::invalid_argument(
         "pneumatic: a power-law air flow (rate exponent != 1) has no small-amplitude frequency-domain tangent; run the "
         "time-domain dynamic step");
-  const Vec6 Ci_v = to_voigt_stress((F_base.transpose() * F_base).inverse());
-  const double J = F_base.determinant();
-  const Mat6 C_air = coefficient(J) * Ci_v * Ci_v.transpose();
+  const Mat3 Ci = (F_base.transpose() * F_base).inverse();
+  const Vec6 Ci_v = to_voigt_stress(Ci);
+  const double J = F_base.determinant(), share = p_.pressure_share;
+  Mat6 C_air = share * coefficient(J) * Ci_v * Ci_v.transpose();
+  for (int k = 0; k < 6; ++k)  // the drag: dS = c C^-1 dE C^-1 per unit rate
+    C_air.col(k) += (1.0 - share) * coefficient(J) * to_voigt_stress(Ci * from_voigt_strain(Vec6::Unit(k)) * Ci);
   const std::complex<double> i_omega(0.0, omega);
   return inner_->complex_tangent(F_base, omega) +
          (i_omega / (1.0 + i_omega * relaxation_time(J))) * C_air.cast<std::complex<double>>();
@@ -162,7 +201,8 @@ std::string PneumaticEffect::describe() const {
                                          (p_.air_modulus_exponent == 0.0
                                               ? std::string()
                                               : " x J^-" + std::to_string(p_.air_modulus_exponent)))
-    << ", flow rate exponent q = " << p_.rate_exponent << ") over " << inner_->describe();
+    << ", flow rate exponent q = " << p_.rate_exponent << ", pressure share " << p_.pressure_share
+    << ", drag share " << 1.0 - p_.pressure_share << ") over " << inner_->describe();
   return o.str();
 }
 

@@ -33,7 +33,20 @@
 /// spring the branch is M in series with this dashpot; the dashpot rate v_d is the root of the monotone
 ///   c(J) g(v_d) - p_old - M (J_old/J - 1) + M dt v_d = 0,    p = c(J) g(v_d),
 /// solved by safeguarded Newton (docs/physics.md 5.1).
-/// Own state: the air pressure p [MPa] (one double). dt = 0 (an instantaneous response) adds no air stress and keeps p.
+/// Pressure or drag (pressure_share s in [0, 1], default 1): the lumped pressure is isotropic, so on a laterally FREE
+/// specimen it also pushes sideways and the specimen inflates: with lateral modulus E_l the air then sees a spring
+/// about E_l/2 in series, and the axial damping saturates (phase falls above omega c ~ E_l/2) where a 1D air dashpot
+/// keeps rising. With lateral drainage the real pore pressure vanishes at the free faces, so the lumped mean pressure
+/// overstates that inflation [A]. The share 1 - s of the air's stress is instead a DRAG along the rate of
+/// deformation, Kirchhoff tau_d = c(J) D (D = sym(dF/dt F^-1)), pulled back S_d = C^-1 Y C^-1 with the Lagrangian
+/// state Y [MPa]:  dashpot Y = c(J) dE/dt;  trapped air  dY/dt + Y/tau(J) = M(J) dE/dt,  backward Euler
+///   Y = (Y_old + M(J) (E - E_old)) / (1 + dt M(J)/c(J)).
+/// In a laterally confined test (F = diag(l, 1, 1)) the drag gives the pressure form's axial stress to first order in
+/// the increment (P11 = c(l) l_dot/l^2 as a dashpot, the same Maxwell spring M dl/l^2); with nu = 0 and free laterals it
+/// adds no lateral stress (D22 = D33 = 0), so the air acts as an axial dashpot or Maxwell branch there. Both parts
+/// share c(J), M(J) and tau(J); S_air = s S_pressure + (1 - s) S_drag (docs/physics.md 5.1). The drag needs the linear
+/// flow (rate_exponent 1).
+/// Own state: the air pressure p [MPa] (one double), then Y (6 doubles, stress-like Voigt) when s < 1. dt = 0 (an instantaneous response) adds no air stress and keeps p.
 /// Frequency domain about a relaxed base F_b (p_air = 0 there):
 ///   dS* = (i omega c(J_b) / (1 + i omega tau(J_b))) C_b^{-1} (x) C_b^{-1} : dE*   added to the inner tangent.
 /// A power-law flow (q != 1) has no amplitude-free small-amplitude tangent: complex_tangent throws
@@ -53,6 +66,7 @@ struct PneumaticParameters {
   double air_modulus = std::numeric_limits<double>::infinity();  ///< M0 [MPa], > 0, at J = 1; infinite: Darcy dashpot
   double air_modulus_exponent = 0.0;  ///< r [-], in [0, 5]: M(J) = M0 J^-r (0: constant; 1: isothermal gas, Boyle)
   double rate_exponent = 1.0;        ///< q [-], in [0.1, 3]: flow law p = c(J) g(v), g ~ sign(v)|v|^q; 1: Darcy
+  double pressure_share = 1.0;       ///< s [-], in [0, 1]: share of isotropic pressure; 1 - s: drag c(J) D (q = 1)
 };
 
 /// Regularisation rate v_eps [1/s] of the power-law flow g(v) = v (v^2 + v_eps^2)^((q-1)/2).
@@ -84,6 +98,9 @@ class PneumaticEffect final : public EffectDecorator {
   Pressure darcy_pressure(double J, double J_old, double dt, double p_old) const;
   /// Power-law flow (q != 1): dashpot closed form, or Maxwell by Newton for the dashpot rate (maxwell_dashpot_rate).
   Pressure power_law_pressure(double J, double J_old, double dt, double p_old) const;
+  /// Adds weight x the drag's PK2 stress C^-1 Y C^-1 [MPa] and its exact increment tangent to r; Y_new <- Y.
+  void add_drag(PointResponse& r, const Mat3& F_old, const Mat3& F_new, double dt, std::span<const double> Y_old,
+                std::span<double> Y_new, double weight) const;
 
   PneumaticParameters p_;
 };

@@ -54,6 +54,12 @@ TEST(EffectCatalog, EveryEntryIsSelfDescribing) {
         EXPECT_LE(p.fit_start, p.max) << p.name;
       }
       EXPECT_FALSE(p.description.empty()) << p.name;
+      if (p.diagnose_value) {  // held by diagnose at another admissible value than the default, not fitted
+        EXPECT_FALSE(p.fit) << p.name;
+        EXPECT_GE(*p.diagnose_value, p.min) << p.name;
+        EXPECT_LE(*p.diagnose_value, p.max) << p.name;
+        EXPECT_NE(*p.diagnose_value, p.default_value) << p.name;
+      }
       if (!p.scan_with.empty()) {  // a fitted partner of the same effect, not the parameter itself
         EXPECT_TRUE(p.fit) << p.name;
         EXPECT_NE(p.scan_with, p.name);
