@@ -42,13 +42,15 @@
 /// state Y [MPa]:  dashpot Y = c(J) dE/dt;  trapped air  dY/dt + Y/tau(J) = M(J) dE/dt,  backward Euler
 ///   Y = (Y_old + M(J) (E - E_old)) / (1 + dt M(J)/c(J)).
 /// In a laterally confined test (F = diag(l, 1, 1)) the drag gives the pressure form's axial stress to first order in
-/// the increment (P11 = c(l) l_dot/l^2 as a dashpot, the same Maxwell spring M dl/l^2); with nu = 0 and free laterals it
-/// adds no lateral stress (D22 = D33 = 0), so the air acts as an axial dashpot or Maxwell branch there. Both parts
-/// share c(J), M(J) and tau(J); S_air = s S_pressure + (1 - s) S_drag (docs/physics.md 5.1). The drag needs the linear
-/// flow (rate_exponent 1).
-/// Own state: the air pressure p [MPa] (one double), then Y (6 doubles, stress-like Voigt) when s < 1. dt = 0 (an instantaneous response) adds no air stress and keeps p.
-/// Frequency domain about a relaxed base F_b (p_air = 0 there):
-///   dS* = (i omega c(J_b) / (1 + i omega tau(J_b))) C_b^{-1} (x) C_b^{-1} : dE*   added to the inner tangent.
+/// the increment (P11 = c(l) l_dot/l^2 as a dashpot, the same Maxwell spring M dl/l^2 per increment; the stored Y is
+/// carried in Lagrangian components, (l_old/l)^2 more than the pressure); with nu = 0 and free laterals it adds no
+/// lateral stress (D22 = D33 = 0), so the air acts as an axial dashpot or Maxwell branch there. Both parts share c(J),
+/// M(J) and tau(J); S_air = s S_pressure + (1 - s) S_drag (docs/physics.md 5.1). The drag needs the linear flow
+/// (rate_exponent 1).
+/// Own state: the air pressure p [MPa] (one double), then Y (6 doubles, stress-like Voigt) when s < 1. dt = 0 (an
+/// instantaneous response) adds no air stress and keeps the state.
+/// Frequency domain about a relaxed base F_b (p_air = 0 and Y = 0 there), added to the inner tangent:
+///   dS* = (i omega c(J_b) / (1 + i omega tau(J_b))) [s C_b^{-1} (x) C_b^{-1} : dE* + (1 - s) C_b^{-1} dE* C_b^{-1}].
 /// A power-law flow (q != 1) has no amplitude-free small-amplitude tangent: complex_tangent throws
 /// std::invalid_argument (run the time-domain dynamic step instead).
 #include <limits>
