@@ -97,16 +97,22 @@ PointResponse PneumaticEffect::integrate(const Mat3& F_old, const Mat3& F_new, d
   const std::span<double> own_new = own(state_new);
   std::copy(own_old.begin(), own_old.end(), own_new.begin());
   if (r.status == Status::failed || dt == 0.0) return r;
-  const double J = F_new.determinant(), J_old = F_old.determinant(), share = p_.pressure_share;
-  const auto [p, dp_dJ] = p_.rate_exponent == 1.0 ? darcy_pressure(J, J_old, dt, own_old[0])
-                                                   : power_law_pressure(J, J_old, dt, own_old[0]);
-  own_new[0] = p;
-  const Mat3 Ci = (F_new.transpose() * F_new).inverse();
-  const Vec6 Ci_v = to_voigt_stress(Ci);
-  r.S += -share * p * Ci_v;
-  // dS/dE = -C^{-1} (x) dp/dE - p dC^{-1}/dE, dp/dE = dp/dJ J C^{-1}.
-  r.dS_dE += share * (-dp_dJ * J * Ci_v * Ci_v.transpose() - p * dCinv_dE(Ci));
-  if (share < 1.0) add_drag(r, F_old, F_new, dt, own_old.subspan(1), own_new.subspan(1), 1.0 - share);
+  const double J = F_new.determinant(), share = p_.pressure_share;
+  const Mat3 C = F_new.transpose() * F_new, Ci = C.inverse();
+  if (share > 0.0) {
+    const double J_old = F_old.determinant();
+    const auto [p, dp_dJ] = p_.rate_exponent == 1.0 ? darcy_pressure(J, J_old, dt, own_old[0])
+                                                     : power_law_pressure(J, J_old, dt, own_old[0]);
+    own_new[0] = p;
+    const Vec6 Ci_v = to_voigt_stress(Ci);
+    r.S += -share * p * Ci_v;
+    // dS/dE = -C^{-1} (x) dp/dE - p dC^{-1}/dE, dp/dE = dp/dJ J C^{-1}.
+    r.dS_dE += share * (-dp_dJ * J * Ci_v * Ci_v.transpose() - p * dCinv_dE(Ci));
+  }
+  if (share < 1.0) {
+    const Mat3 dE = 0.5 * (C - F_old.transpose() * F_old);
+    add_drag(r, Ci, J, dE, dt, own_old.subspan(1), own_new.subspan(1), 1.0 - share);
+  }
   if (!r.S.allFinite()) {
     r.status = Status::failed;
     r.message = "pneumatic: non-finite stress";
@@ -124,24 +130,26 @@ PneumaticEffect::Pressure PneumaticEffect::darcy_pressure(double J, double J_old
   // the terms with dM vanish exactly, so a constant modulus gives the same numbers as before the exponent existed)
   const double M = air_modulus(J), dM = -p_.air_modulus_exponent * M / J;
   const double A = p_old - M * (J - J_old) / J, dA = -M * J_old / (J * J) - dM * (J - J_old) / J;
-  const double B = 1.0 + dt * M * std::pow(J, n) / c0,
-               dB = dt * M * n * std::pow(J, n - 1.0) / c0 + dt * dM * std::pow(J, n) / c0;
+  const auto [B, dB] = maxwell_denominator(J, dt);
   return {A / B, (dA * B - A * dB) / (B * B)};
 }
 
-void PneumaticEffect::add_drag(PointResponse& r, const Mat3& F_old, const Mat3& F_new, double dt,
+PneumaticEffect::Denominator PneumaticEffect::maxwell_denominator(double J, double dt) const {
+  const double c0 = coefficient(1.0), n = p_.permeability_exponent;
+  const double M = air_modulus(J), dM = -p_.air_modulus_exponent * M / J;
+  return {1.0 + dt * M * std::pow(J, n) / c0, dt * M * n * std::pow(J, n - 1.0) / c0 + dt * dM * std::pow(J, n) / c0};
+}
+
+void PneumaticEffect::add_drag(PointResponse& r, const Mat3& Ci, double J, const Mat3& dE, double dt,
                                std::span<const double> Y_old, std::span<double> Y_new, double weight) const {
-  const Mat3 C = F_new.transpose() * F_new, Ci = C.inverse();
-  const Mat3 dE = 0.5 * (C - F_old.transpose() * F_old);
-  const double J = F_new.determinant(), c = coefficient(J), n = p_.permeability_exponent;
+  const double c = coefficient(J), n = p_.permeability_exponent;
   // Y and its derivative dY[X] = alpha X + (C^-1 : X) Z along a strain direction X (dJ = J C^-1 : X).
   double alpha = c / dt;
   Mat3 Y = alpha * dE, Z = -n * alpha * dE;  // dashpot: alpha = c(J)/dt, d alpha/dJ = -n alpha/J
   if (!std::isinf(p_.air_modulus)) {
-    // Maxwell: Y = (Y_old + M dE)/B, B = 1 + dt M(J)/c(J) = 1 + dt M J^n/c0 (as in darcy_pressure).
-    const double M = air_modulus(J), dM = -p_.air_modulus_exponent * M / J, c0 = coefficient(1.0);
-    const double B = 1.0 + dt * M * std::pow(J, n) / c0,
-                 dB = dt * M * n * std::pow(J, n - 1.0) / c0 + dt * dM * std::pow(J, n) / c0;
+    // Maxwell: Y = (Y_old + M dE)/B, B = 1 + dt M(J)/c(J) (as in darcy_pressure).
+    const double M = air_modulus(J), dM = -p_.air_modulus_exponent * M / J;
+    const auto [B, dB] = maxwell_denominator(J, dt);
     alpha = M / B;
     Y = (from_voigt_stress(Eigen::Map<const Vec6>(Y_old.data())) + M * dE) / B;
     Z = J * (dM * dE - dB * Y) / B;

@@ -100,8 +100,13 @@ class PneumaticEffect final : public EffectDecorator {
   Pressure darcy_pressure(double J, double J_old, double dt, double p_old) const;
   /// Power-law flow (q != 1): dashpot closed form, or Maxwell by Newton for the dashpot rate (maxwell_dashpot_rate).
   Pressure power_law_pressure(double J, double J_old, double dt, double p_old) const;
-  /// Adds weight x the drag's PK2 stress C^-1 Y C^-1 [MPa] and its exact increment tangent to r; Y_new <- Y.
-  void add_drag(PointResponse& r, const Mat3& F_old, const Mat3& F_new, double dt, std::span<const double> Y_old,
+  struct Denominator {
+    double B, dB_dJ;  ///< B = 1 + dt M(J)/c(J) [-] of the backward-Euler Maxwell step, and its derivative by J
+  };
+  Denominator maxwell_denominator(double J, double dt) const;
+  /// Adds weight x the drag's PK2 stress C^-1 Y C^-1 [MPa] and its exact increment tangent to r; Y_new <- Y. C^-1 and J
+  /// at the increment's end, dE = E - E_old (Green-Lagrange).
+  void add_drag(PointResponse& r, const Mat3& Ci, double J, const Mat3& dE, double dt, std::span<const double> Y_old,
                 std::span<double> Y_new, double weight) const;
 
   PneumaticParameters p_;

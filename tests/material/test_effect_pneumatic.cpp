@@ -120,7 +120,9 @@ TEST(EffectPneumatic, TrappedAirRelaxesUnderAHoldWithItsTime) {
     const double s = extra_P11(m, J_h, J_h, dt, state, &next);
     expected /= 1.0 + dt / tau;
     EXPECT_NEAR(next.back(), expected, 1e-12 * std::abs(expected)) << k;
-    if (k % 200 == 0) EXPECT_NEAR(s / s0, std::exp(-k * dt / tau), 0.01 * std::exp(-k * dt / tau)) << k;
+    if (k % 200 == 0) {
+      EXPECT_NEAR(s / s0, std::exp(-k * dt / tau), 0.01 * std::exp(-k * dt / tau)) << k;
+    }
     state = next;
   }
 }
