@@ -33,6 +33,13 @@ std::string fmt(double v, int digits = 3) {
   return o.str();
 }
 
+/// The base parameters the base refit and joint candidates fit, in words: "hyperfoam mu_i and alpha_i, Prony g_i and
+/// tau_i" (the exponents and times as the options free them).
+std::string refitted_base_parameters(const DiagnoseOptions& o) {
+  return std::string("hyperfoam mu_i") + (o.base_exponents ? " and alpha_i" : "") + ", Prony g_i" +
+         (o.base_times ? " and tau_i" : "");
+}
+
 /// chi2: sum of squared noise-normalised residuals of a comparison.
 double chi2_of(const CompareResult& r, int points) {
   double s = 0.0;
@@ -46,10 +53,13 @@ struct FreeParameter {
   std::size_t base_term = npos;  ///< hyperfoam term whose mu this factor scales (base refit), else npos
   std::size_t prony_term = npos; ///< Prony term whose a_i = g_i/(1 - sum g) this factor scales (base refit)
   std::size_t prony_time = npos; ///< Prony term whose tau_i this factor scales (base refit with base_times)
-  bool is_base() const { return base_term != npos || prony_term != npos || prony_time != npos; }
+  bool is_base() const {
+    return base_term != npos || prony_term != npos || prony_time != npos || exponent_term != npos;
+  }
   static constexpr std::size_t npos = static_cast<std::size_t>(-1);
   const material::EffectParameterInfo* info = nullptr;
   double lower = 0.0, upper = 0.0;  ///< bounds of u
+  std::size_t exponent_term = npos;  ///< hyperfoam term whose alpha_i this factor scales (base_exponents)
   double to_u(double x) const { return info->log_scale ? std::log10(x) : x / scale(); }
   double to_x(double u) const { return info->log_scale ? std::pow(10.0, u) : u * scale(); }
   double scale() const { return info->default_value != 0.0 ? std::abs(info->default_value) : 1.0; }
@@ -95,9 +105,10 @@ class CandidateModel {
   }
 
   /// Adds a log10 factor in [-1, 1] on the mu of every hyperfoam term and on the relative modulus
-  /// a_i = g_i/(1 - sum g) of every Prony term of the base (the base-refit reference; no effect), and with
-  /// `times` one in [-0.5, 0.5] on every Prony time tau_i.
-  void free_base_moduli(bool times) {
+  /// a_i = g_i/(1 - sum g) of every Prony term of the base (the base-refit reference; no effect), with
+  /// `times` one in [-0.5, 0.5] on every Prony time tau_i, and with `exponents` one in [-0.2, 0.2] on every hyperfoam
+  /// exponent alpha_i (its sign kept).
+  void free_base_moduli(bool times, bool exponents) {
     static const material::EffectParameterInfo factor{"modulus_factor", "factor on a base modulus", 1.0, 0.1, 10.0,
                                                       true, true, true};
     static const material::EffectParameterInfo time{"time_factor", "factor on a base Prony time", 1.0, 0.316, 3.16,
@@ -107,9 +118,36 @@ class CandidateModel {
     for (std::size_t t = 0; t < base_.prony.size(); ++t) free_.push_back({0, none, t, none, &factor, -1.0, 1.0});
     if (times)
       for (std::size_t t = 0; t < base_.prony.size(); ++t) free_.push_back({0, none, none, t, &time, -0.5, 0.5});
+    static const material::EffectParameterInfo exponent{"exponent_factor", "factor on a hyperfoam exponent", 1.0, 0.63,
+                                                        1.58, true, true, true};
+    if (exponents)
+      for (std::size_t t = 0; t < base_.hyperfoam.size(); ++t)
+        free_.push_back({0, none, none, none, &exponent, -0.2, 0.2, t});
   }
 
   const std::vector<FreeParameter>& free() const { return free_; }
+
+  /// start() with the base factors that turn this model's base into `other` (a spec with the same terms; each factor
+  /// clamped to its bounds): the same candidate started on another base.
+  std::vector<double> start_on(const material::MaterialSpec& other) const {
+    std::vector<double> u = start();
+    const auto a_of = [](const material::MaterialSpec& s, std::size_t k) {
+      double g_sum = 0.0;
+      for (const auto& t : s.prony) g_sum += t.g;
+      return s.prony[k].g / (1.0 - g_sum);
+    };
+    for (std::size_t i = 0; i < free_.size(); ++i) {
+      const FreeParameter& f = free_[i];
+      double ratio = 1.0;
+      if (f.base_term != FreeParameter::npos) ratio = other.hyperfoam[f.base_term].mu / base_.hyperfoam[f.base_term].mu;
+      if (f.prony_term != FreeParameter::npos) ratio = a_of(other, f.prony_term) / a_of(base_, f.prony_term);
+      if (f.prony_time != FreeParameter::npos) ratio = other.prony[f.prony_time].tau / base_.prony[f.prony_time].tau;
+      if (f.exponent_term != FreeParameter::npos)
+        ratio = other.hyperfoam[f.exponent_term].alpha / base_.hyperfoam[f.exponent_term].alpha;
+      if (f.is_base() && ratio > 0.0 && std::isfinite(ratio)) u[i] = std::clamp(f.to_u(ratio), f.lower, f.upper);
+    }
+    return u;
+  }
 
   std::vector<material::EffectSpec> effects_at(const double* u) const {
     std::vector<material::EffectSpec> e = effects_;
@@ -138,6 +176,8 @@ class CandidateModel {
       if (free_[i].base_term != FreeParameter::npos) s.hyperfoam[free_[i].base_term].mu *= free_[i].to_x(u[i]);
       if (free_[i].prony_term != FreeParameter::npos) a[free_[i].prony_term] *= free_[i].to_x(u[i]), prony_scaled = true;
       if (free_[i].prony_time != FreeParameter::npos) s.prony[free_[i].prony_time].tau *= free_[i].to_x(u[i]);
+      if (free_[i].exponent_term != FreeParameter::npos)
+        s.hyperfoam[free_[i].exponent_term].alpha *= free_[i].to_x(u[i]);
     }
     if (prony_scaled) {
       for (double x : a) a_sum += x;
@@ -214,14 +254,16 @@ enum class Scan {
 };
 
 /// The trial values of a parameter about u (u itself excluded): log-scale ones a decade apart over 3 decades either
-/// side, others u x {0, 0.3, 3, 10}; only values within the bounds.
+/// side, only those within the bounds; others u x {0, 0.3, 3, 10} clamped to the bounds, so that a share started
+/// inside (Mullins relaxation_share 0.5) also tries its bound 1.
 std::vector<double> scan_values(const FreeParameter& f, double u) {
   std::vector<double> v;
   if (f.info->log_scale)
     for (int d = -3; d <= 3; ++d) v.push_back(u + d);
   else
-    for (double s : {0.0, 0.3, 3.0, 10.0}) v.push_back(u * s);
+    for (double s : {0.0, 0.3, 3.0, 10.0}) v.push_back(std::clamp(u * s, f.lower, f.upper));
   std::erase_if(v, [&](double t) { return t < f.lower || t > f.upper || t == u; });
+  v.erase(std::unique(v.begin(), v.end()), v.end());
   return v;
 }
 
@@ -298,9 +340,15 @@ double refine_start(const CandidateModel& m, std::vector<double>& u, const std::
   return best;
 }
 
-/// The start search of `scan` (see Scan) from u, then refine_start; returns the start.
-std::vector<double> scan_start(const CandidateModel& m, std::vector<double> u, Scan scan, SpareCores* spare) {
-  if (scan == Scan::none) return u;
+/// A start of Levenberg-Marquardt and its chi2.
+struct Start {
+  std::vector<double> u;
+  double chi2 = 0.0;
+};
+
+/// The start search of `scan` (see Scan) from u, then refine_start.
+Start scan_start(const CandidateModel& m, std::vector<double> u, Scan scan, SpareCores* spare) {
+  if (scan == Scan::none) return {u, m.chi2_at(u.data())};
   std::size_t last_effect = 0;
   for (const FreeParameter& f : m.free())
     if (!f.is_base()) last_effect = std::max(last_effect, f.effect);
@@ -326,8 +374,8 @@ std::vector<double> scan_start(const CandidateModel& m, std::vector<double> u, S
   }
   for (std::size_t i : in_turn) best = scan_parameter(m, u, i, best, spare);
   std::erase_if(scanned, [&m](std::size_t i) { return m.free()[i].is_base(); });
-  refine_start(m, u, scanned, best, spare);
-  return u;
+  best = refine_start(m, u, scanned, best, spare);
+  return {u, best};
 }
 
 /// The lowest cost 0.5 |r|^2 among the points a fit evaluated, and where (safe from two threads).
@@ -392,23 +440,28 @@ ceres::Solver::Summary minimise(const CandidateModel& model, std::vector<double>
 CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector<material::EffectSpec>& start_effects,
                            const Campaign& campaign, const std::vector<TestNoise>& noise, std::size_t n_residuals,
                            double baseline_bic, const DiagnoseOptions& options, Scan scan, bool refit_base = false,
-                           SpareCores* spare = nullptr) {
+                           SpareCores* spare = nullptr, const material::MaterialSpec* second_base = nullptr) {
   const auto t0 = Clock::now();
   CandidateFit fit;
   for (const auto& e : start_effects) fit.kinds.push_back(e.kind);
   CandidateModel model(base, start_effects, campaign, noise, options);
   if (refit_base) {
-    model.free_base_moduli(options.base_times);  // a joint candidate has every parameter of the reference
+    // a joint candidate has every parameter of the reference
+    model.free_base_moduli(options.base_times, options.base_exponents);
     fit.base_refitted = true;
     if (start_effects.empty())
-      fit.kinds.push_back(options.base_times ? "base refit (hyperfoam and Prony moduli, Prony times)"
-                                             : "base refit (hyperfoam and Prony moduli)");
+      fit.kinds.push_back("base refit (" + refitted_base_parameters(options) + ")");
   }
   std::vector<double> u = model.start();
   fit.parameters = static_cast<int>(u.size());
   try {
-    u = scan_start(model, u, scan, spare);
-    if (!std::isfinite(model.chi2_at(u.data())))
+    Start s = scan_start(model, u, scan, spare);
+    if (second_base) {  // the same scan on the second base; the lower start is kept
+      Start t = scan_start(model, model.start_on(*second_base), scan, spare);
+      if (t.chi2 < s.chi2) s = std::move(t);
+    }
+    u = std::move(s.u);
+    if (!std::isfinite(s.chi2))
       throw std::runtime_error("the model with this effect fails at every start value tried");
     const std::vector<double> start = u;
     const ceres::Solver::Summary summary = minimise(model, u, n_residuals, options.max_iterations, spare);
@@ -719,8 +772,9 @@ struct CandidateJobs {
   std::function<CandidateFit()> job(std::vector<material::EffectSpec> effects, Scan scan, bool refit_base) const {
     return [this, effects = std::move(effects), scan, refit_base] {
       const material::MaterialSpec& base = refit_base && !effects.empty() ? joint_start() : baseline;
+      const material::MaterialSpec* second = &base != &baseline && scan == Scan::effect ? &baseline : nullptr;
       return fit_candidate(base, effects, campaign, d.noise, d.residuals, d.baseline_bic, options, scan, refit_base,
-                           &spare);
+                           &spare, second);
     };
   }
 };
@@ -990,9 +1044,8 @@ void winner_verdict(const material::MaterialSpec& baseline, const DiagnoseOption
   o << "Add " << w.name() << " (dBIC " << fmt(w.delta_bic, 4) << " for " << w.parameters
     << " parameters; chi2/N " << fmt(d.baseline_chi2 / d.residuals) << " -> " << fmt(w.chi2 / d.residuals) << "). ";
   if (w.base_refitted)
-    o << "Fitted together with the base moduli (joint): use material_extended.json, whose hyperfoam mu_i and Prony "
-         "g_i" << (options.base_times ? " and tau_i" : "") << " are refitted too; the fragment alone on the old base is "
-         "not the fitted model. ";
+    o << "Fitted together with the base (joint): use material_extended.json, whose " << refitted_base_parameters(options)
+      << " are refitted too; the fragment alone on the old base is not the fitted model. ";
   if (d.winner_at_noise_level) {
     o << "With it every test falls to the noise level (within " << fmt(options.compare.noise_level_ratio, 2) << "x).";
   } else {
@@ -1084,7 +1137,7 @@ void no_winner_verdict(const DiagnoseOptions& options, Diagnosis& d) {
   }
   if (base_refit_at_noise(d, options)) {
     const CandidateFit& b = *d.base_refit;
-    o << "No effect is missing: refitting only the base (hyperfoam mu_i, Prony g_i" << (options.base_times ? " and tau_i" : "")
+    o << "No effect is missing: refitting only the base (" << refitted_base_parameters(options)
       << ", no effect) brings every test within " << fmt(options.compare.noise_level_ratio, 2) << "x its noise (chi2/N "
       << fmt(d.baseline_chi2 / d.residuals) << " -> " << fmt(b.chi2 / d.residuals) << "): the misfit is a base calibration "
       << "that is slightly off, which an effect must not be named for";
@@ -1095,7 +1148,7 @@ void no_winner_verdict(const DiagnoseOptions& options, Diagnosis& d) {
   } else if (base_gain(d) > options.strong_evidence) {
     const CandidateFit& b = *d.base_refit;
     o << "No effect can be told from a base calibration that is slightly off: refitting only the base "
-         "(hyperfoam mu_i, Prony g_i" << (options.base_times ? " and tau_i" : "") << ", no effect) gives dBIC "
+         "(" << refitted_base_parameters(options) << ", no effect) gives dBIC "
       << fmt(b.delta_bic, 4) << " (chi2/N " << fmt(d.baseline_chi2 / d.residuals) << " -> " << fmt(b.chi2 / d.residuals)
       << (b.compare.at_noise_level(options.compare.noise_level_ratio) ? ", every test at the noise level" : "")
       << ") and no catalogue effect beats it by dBIC > " << fmt(options.strong_evidence);

@@ -19,7 +19,8 @@
 ///     catalogue range, and 4 decades either side of the default for log-scale ones. Start: a coarse scan
 ///     of the effect's parameters one at a time (log-scale: default x 10^{-3..3}; else default x {0, 0.3, 1, 3, 10}),
 ///     then half a decade either side of each log-scale value chosen, a value kept only when it lowers chi2 by 0.1 %
-///     (the base factors start at the reference's fit and are not scanned), then Ceres
+///     (the base factors start at the reference's fit and are not scanned; where the reference moved the base, the
+///     same scan also runs on the base as given and the lower start is kept), then Ceres
 ///     bounded Levenberg-Marquardt with forward-difference Jacobian (parameters clamped to their bounds before each run;
 ///     the projected line search by bisection, cost only) on the noise-normalised residuals
 ///     (compare.hpp normalised_residuals). Candidates run on `threads` threads, longest pairs first; a thread with no
@@ -32,7 +33,8 @@
 ///     is SUPPORTED when dBIC > strong_evidence (Kass & Raftery: > 10 is very strong) AND it beats by
 ///     strong_evidence the base-refit reference (the base moduli refitted without effect: one log10
 ///     factor in [-1, 1] on each hyperfoam mu_i and on each Prony a_i = g_i/(1 - sum g), and under base_times one in
-///     [-0.5, 0.5] on each Prony time): a residual that a slightly different base explains as well is not
+///     [-0.5, 0.5] on each Prony time, and under base_exponents one in [-0.2, 0.2] on each hyperfoam exponent
+///     alpha_i): a residual that a slightly different base explains as well is not
 ///     evidence of a missing effect. A pair is preferred to the best single only when its dBIC exceeds the
 ///     single's by strong_evidence too.
 ///  5. Verdict: the best supported candidate, its error per test and region after the refit, whether
@@ -83,6 +85,13 @@ struct DiagnoseOptions {
   /// candidate's held-out refit kept times fitted on the test left out (the 4-term base-mismatch foreign case:
   /// friction confirmed, 4569 vs 2.7e4); with the times refitted all three pass (Mullins 1.20/1.09/1.14x).
   bool base_times = true;
+  /// The base refit (and so every joint candidate) also frees a log10 factor in [-0.2, 0.2] on each hyperfoam exponent
+  /// alpha_i: the fit's exponents are set on data that contain the effect, and they shape the curves at every strain
+  /// level, so a compression-dependent effect they took up stays in them when only the mu_i are refitted. Measured
+  /// (2026-11-28, scale set of tools/bench_diagnose.sh, docs/physics.md 9.8): strain-dependent Prony c054 (our own
+  /// power-law form) named at chi2/N 0.94 instead of friction + air flow, c039 named too; singles 27/40 against 26/40
+  /// (with the Mullins start of that day), 13 % more time per campaign.
+  bool base_exponents = true;
   /// Out-of-sample check of a supported candidate (leave-one-test-out, see HeldOutCheck), a veto: off by default.
   /// Measured (2026-11-24, foreign campaigns of tools/bench_diagnose.sh seed 77, base fitted from raw data): with 3
   /// rates and 2 preloads, leaving out the slowest rate or the lower preload is an extrapolation that no refit on the
