@@ -127,28 +127,6 @@ class CandidateModel {
 
   const std::vector<FreeParameter>& free() const { return free_; }
 
-  /// start() with the base factors that turn this model's base into `other` (a spec with the same terms; each factor
-  /// clamped to its bounds): the same candidate started on another base.
-  std::vector<double> start_on(const material::MaterialSpec& other) const {
-    std::vector<double> u = start();
-    const auto a_of = [](const material::MaterialSpec& s, std::size_t k) {
-      double g_sum = 0.0;
-      for (const auto& t : s.prony) g_sum += t.g;
-      return s.prony[k].g / (1.0 - g_sum);
-    };
-    for (std::size_t i = 0; i < free_.size(); ++i) {
-      const FreeParameter& f = free_[i];
-      double ratio = 1.0;
-      if (f.base_term != FreeParameter::npos) ratio = other.hyperfoam[f.base_term].mu / base_.hyperfoam[f.base_term].mu;
-      if (f.prony_term != FreeParameter::npos) ratio = a_of(other, f.prony_term) / a_of(base_, f.prony_term);
-      if (f.prony_time != FreeParameter::npos) ratio = other.prony[f.prony_time].tau / base_.prony[f.prony_time].tau;
-      if (f.exponent_term != FreeParameter::npos)
-        ratio = other.hyperfoam[f.exponent_term].alpha / base_.hyperfoam[f.exponent_term].alpha;
-      if (f.is_base() && ratio > 0.0 && std::isfinite(ratio)) u[i] = std::clamp(f.to_u(ratio), f.lower, f.upper);
-    }
-    return u;
-  }
-
   std::vector<material::EffectSpec> effects_at(const double* u) const {
     std::vector<material::EffectSpec> e = effects_;
     for (std::size_t i = 0; i < free_.size(); ++i)
@@ -254,16 +232,14 @@ enum class Scan {
 };
 
 /// The trial values of a parameter about u (u itself excluded): log-scale ones a decade apart over 3 decades either
-/// side, only those within the bounds; others u x {0, 0.3, 3, 10} clamped to the bounds, so that a share started
-/// inside (Mullins relaxation_share 0.5) also tries its bound 1.
+/// side, others u x {0, 0.3, 3, 10}; only values within the bounds.
 std::vector<double> scan_values(const FreeParameter& f, double u) {
   std::vector<double> v;
   if (f.info->log_scale)
     for (int d = -3; d <= 3; ++d) v.push_back(u + d);
   else
-    for (double s : {0.0, 0.3, 3.0, 10.0}) v.push_back(std::clamp(u * s, f.lower, f.upper));
+    for (double s : {0.0, 0.3, 3.0, 10.0}) v.push_back(u * s);
   std::erase_if(v, [&](double t) { return t < f.lower || t > f.upper || t == u; });
-  v.erase(std::unique(v.begin(), v.end()), v.end());
   return v;
 }
 
@@ -440,7 +416,7 @@ ceres::Solver::Summary minimise(const CandidateModel& model, std::vector<double>
 CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector<material::EffectSpec>& start_effects,
                            const Campaign& campaign, const std::vector<TestNoise>& noise, std::size_t n_residuals,
                            double baseline_bic, const DiagnoseOptions& options, Scan scan, bool refit_base = false,
-                           SpareCores* spare = nullptr, const material::MaterialSpec* second_base = nullptr) {
+                           SpareCores* spare = nullptr) {
   const auto t0 = Clock::now();
   CandidateFit fit;
   for (const auto& e : start_effects) fit.kinds.push_back(e.kind);
@@ -456,10 +432,6 @@ CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector
   fit.parameters = static_cast<int>(u.size());
   try {
     Start s = scan_start(model, u, scan, spare);
-    if (second_base) {  // the same scan on the second base; the lower start is kept
-      Start t = scan_start(model, model.start_on(*second_base), scan, spare);
-      if (t.chi2 < s.chi2) s = std::move(t);
-    }
     u = std::move(s.u);
     if (!std::isfinite(s.chi2))
       throw std::runtime_error("the model with this effect fails at every start value tried");
@@ -772,9 +744,8 @@ struct CandidateJobs {
   std::function<CandidateFit()> job(std::vector<material::EffectSpec> effects, Scan scan, bool refit_base) const {
     return [this, effects = std::move(effects), scan, refit_base] {
       const material::MaterialSpec& base = refit_base && !effects.empty() ? joint_start() : baseline;
-      const material::MaterialSpec* second = &base != &baseline && scan == Scan::effect ? &baseline : nullptr;
       return fit_candidate(base, effects, campaign, d.noise, d.residuals, d.baseline_bic, options, scan, refit_base,
-                           &spare, second);
+                           &spare);
     };
   }
 };

@@ -93,7 +93,7 @@ const std::vector<Entry>& entries() {
         "energy reached",
         {{"r", "r: maximum softening 1/r", 2.0, 1.0, 1e3, true, true, true},
          {"m_kPa", "m: energy scale of the softening (kPa = kJ/m^3)", 1.0, 0.0, 1e4, true, true, true},
-         {"beta", "beta: growth of the energy scale with W_max", 0.1, 0.0, 10.0, false, true, false},
+         {"beta", "beta: growth of the energy scale with W_max", 0.1, 0.0, 10.0, false, false, false},
          {"relaxation_share",
           "w: share of the softening eta^w applied to the long-term stress that drives the Prony memory (the rest, "
           "eta^(1-w), scales the whole stress); 0: eta S_inner; > 0 only as the first effect on a Prony material",

@@ -65,7 +65,6 @@ struct DiagnoseCli {
   bool held_out = false;
   bool fixed_base = false;
   bool fixed_times = false;
-  bool fixed_exponents = false;
   bool assume_protocol = false;
   cushion::calibration::DiagnoseOptions options;
 };
@@ -91,9 +90,9 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
   sub->add_flag("--fixed-prony-times", opt->fixed_times,
                 "with a MATERIAL: the base refit keeps its Prony times tau_i (default: a factor in [0.316, 3.16] on each is "
                 "fitted too); from raw data the fit has placed them already and they are always kept");
-  sub->add_flag("--fixed-exponents", opt->fixed_exponents,
-                "the base refit and joint candidates keep the hyperfoam exponents alpha_i (default: a factor in [0.63, "
-                "1.58] on each is fitted too)");
+  sub->add_flag("--refit-exponents", opt->options.base_exponents,
+                "the base refit and every joint candidate also fit a factor in [0.63, 1.58] on each hyperfoam exponent "
+                "alpha_i (off by default: docs/physics.md 9.8)");
   sub->add_flag("--held-out", opt->held_out,
                 "name an effect only if it also predicts each test left out of its fit better than the base refit "
                 "(leave one test out; slower; off by default: with five tests of different kinds it vetoed the right "
@@ -121,7 +120,6 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
     o.held_out = opt->held_out;
     o.search_protocol = !opt->assume_protocol;
     o.base_times = !opt->fixed_times && !raw;  // from raw data the fit has placed the times (--free-tau)
-    o.base_exponents = !opt->fixed_exponents;
     for (const auto& k : o.candidates)
       if (!cushion::material::find_effect(k)) throw cushion::InputError("--candidates: unknown effect kind '" + k + "'");
     const std::string campaign_path = opt->files.back();

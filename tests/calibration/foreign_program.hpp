@@ -31,13 +31,10 @@ inline std::filesystem::path generate(const std::string& tag, int count, unsigne
   return d;
 }
 
-/// report.json of `cushion diagnose [MATERIAL] DIR/campaign.json OPTIONS -o DIR/diag`: from raw data (the fit included)
-/// when `material` is empty; the verdict is printed for the record.
-inline nlohmann::json run_diagnose(const std::filesystem::path& campaign_dir, const std::string& options,
-                                   const std::filesystem::path& material) {
-  std::string given;  // appended, not "a" + b: GCC 12 -Wrestrict reports a false overlap for the latter
-  if (!material.empty()) given.append("\"").append(material.string()).append("\" ");
-  const std::string command = std::string("\"") + CUSHION_BINARY + "\" diagnose " + given + "\"" +
+/// report.json of `cushion diagnose DIR/campaign.json OPTIONS -o DIR/diag` (from raw data: the fit included); the verdict
+/// is printed for the record.
+inline nlohmann::json diagnose_raw(const std::filesystem::path& campaign_dir, const std::string& options) {
+  const std::string command = std::string("\"") + CUSHION_BINARY + "\" diagnose \"" +
                               (campaign_dir / "campaign.json").string() + "\" -o \"" +
                               (campaign_dir / "diag").string() + "\" " + options + " > /dev/null 2>&1";
   EXPECT_EQ(std::system(command.c_str()), 0) << command;
@@ -45,9 +42,6 @@ inline nlohmann::json run_diagnose(const std::filesystem::path& campaign_dir, co
   const nlohmann::json r = nlohmann::json::parse(in);
   std::cout << campaign_dir.filename().string() << ": " << r.at("verdict").get<std::string>() << "\n";
   return r;
-}
-inline nlohmann::json diagnose_raw(const std::filesystem::path& campaign_dir, const std::string& options) {
-  return run_diagnose(campaign_dir, options, {});
 }
 
 /// The truth's base foam (truth.json "base") as a cushion material file: hyperfoam with nu = 0 (the foreign

@@ -41,7 +41,9 @@ TEST(DiagnoseRaw, ForeignControlsFitToTheNoiseAndNameNoEffect) {
       const double tau = truth[i].at("tau_s").get<double>();
       std::cout << name << " Prony term " << i << ": tau " << fitted[i].tau << " s (truth " << tau << " s, g "
                 << truth[i].at("g").get<double>() << ")\n";
-      if (truth[i].at("g").get<double>() >= 0.04 && tau >= 1.0 / (2.0 * M_PI * 20.0)) EXPECT_LT(std::abs(std::log(fitted[i].tau / tau)), std::log(1.35)) << i;
+      if (truth[i].at("g").get<double>() >= 0.04 && tau >= 1.0 / (2.0 * M_PI * 20.0)) {
+        EXPECT_LT(std::abs(std::log(fitted[i].tau / tau)), std::log(1.35)) << i;
+      }
     }
     const auto spec = cc::to_spec(R.default_material, "foam", "fitted", campaign.specimen.density);
     const cc::Diagnosis d = cc::diagnose(spec, campaign, cc::DiagnoseOptions{}, log);
