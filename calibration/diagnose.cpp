@@ -47,19 +47,20 @@ double chi2_of(const CompareResult& r, int points) {
   return s;
 }
 
+/// What a base-refit factor scales (none: the parameter is an effect's).
+enum class BaseTarget { none, hyperfoam_mu, prony_modulus, prony_time, hyperfoam_exponent };
+
 /// One fitted parameter: where it lives and how it is scaled.
 struct FreeParameter {
-  std::size_t effect = 0;  ///< index in the candidate's effect list
-  std::size_t base_term = npos;  ///< hyperfoam term whose mu this factor scales (base refit), else npos
-  std::size_t prony_term = npos; ///< Prony term whose a_i = g_i/(1 - sum g) this factor scales (base refit)
-  std::size_t prony_time = npos; ///< Prony term whose tau_i this factor scales (base refit with base_times)
-  bool is_base() const {
-    return base_term != npos || prony_term != npos || prony_time != npos || exponent_term != npos;
-  }
-  static constexpr std::size_t npos = static_cast<std::size_t>(-1);
+  std::size_t effect = 0;  ///< index in the candidate's effect list (effect parameters)
+  /// A base-refit factor: on hyperfoam term `term`'s mu_i or alpha_i, or on Prony term `term`'s relative modulus
+  /// a_i = g_i/(1 - sum g) or time tau_i.
+  BaseTarget target = BaseTarget::none;
+  std::size_t term = 0;
+  bool is_base() const { return target != BaseTarget::none; }
+  static constexpr std::size_t npos = static_cast<std::size_t>(-1);  ///< no parameter (scan_partner)
   const material::EffectParameterInfo* info = nullptr;
   double lower = 0.0, upper = 0.0;  ///< bounds of u
-  std::size_t exponent_term = npos;  ///< hyperfoam term whose alpha_i this factor scales (base_exponents)
   double to_u(double x) const { return info->log_scale ? std::log10(x) : x / scale(); }
   double to_x(double u) const { return info->log_scale ? std::pow(10.0, u) : u * scale(); }
   double scale() const { return info->default_value != 0.0 ? std::abs(info->default_value) : 1.0; }
@@ -88,7 +89,7 @@ class CandidateModel {
             effects_[e].parameters[p.name] = *p.diagnose_value;  // the form diagnose fits (pneumatic drag)
           continue;
         }
-        FreeParameter f{e, FreeParameter::npos, FreeParameter::npos, FreeParameter::npos, &p};
+        FreeParameter f{e, BaseTarget::none, 0, &p};
         const double start = p.fit_start > 0.0 ? p.fit_start : p.default_value;
         if (p.log_scale) {
           const double lo = std::max(p.min_exclusive ? p.min * (1 + 1e-12) + 1e-300 : p.min, start * 1e-4);
@@ -113,16 +114,18 @@ class CandidateModel {
                                                       true, true, true};
     static const material::EffectParameterInfo time{"time_factor", "factor on a base Prony time", 1.0, 0.316, 3.16,
                                                     true, true, true};
-    constexpr std::size_t none = FreeParameter::npos;
-    for (std::size_t t = 0; t < base_.hyperfoam.size(); ++t) free_.push_back({0, t, none, none, &factor, -1.0, 1.0});
-    for (std::size_t t = 0; t < base_.prony.size(); ++t) free_.push_back({0, none, t, none, &factor, -1.0, 1.0});
-    if (times)
-      for (std::size_t t = 0; t < base_.prony.size(); ++t) free_.push_back({0, none, none, t, &time, -0.5, 0.5});
     static const material::EffectParameterInfo exponent{"exponent_factor", "factor on a hyperfoam exponent", 1.0, 0.63,
                                                         1.58, true, true, true};
+    for (std::size_t t = 0; t < base_.hyperfoam.size(); ++t)
+      free_.push_back({0, BaseTarget::hyperfoam_mu, t, &factor, -1.0, 1.0});
+    for (std::size_t t = 0; t < base_.prony.size(); ++t)
+      free_.push_back({0, BaseTarget::prony_modulus, t, &factor, -1.0, 1.0});
+    if (times)
+      for (std::size_t t = 0; t < base_.prony.size(); ++t)
+        free_.push_back({0, BaseTarget::prony_time, t, &time, -0.5, 0.5});
     if (exponents)
       for (std::size_t t = 0; t < base_.hyperfoam.size(); ++t)
-        free_.push_back({0, none, none, none, &exponent, -0.2, 0.2, t});
+        free_.push_back({0, BaseTarget::hyperfoam_exponent, t, &exponent, -0.2, 0.2});
   }
 
   const std::vector<FreeParameter>& free() const { return free_; }
@@ -151,11 +154,15 @@ class CandidateModel {
     for (const auto& t : s.prony) a.push_back(t.g / (1.0 - g_sum));
     bool prony_scaled = false;
     for (std::size_t i = 0; i < free_.size(); ++i) {
-      if (free_[i].base_term != FreeParameter::npos) s.hyperfoam[free_[i].base_term].mu *= free_[i].to_x(u[i]);
-      if (free_[i].prony_term != FreeParameter::npos) a[free_[i].prony_term] *= free_[i].to_x(u[i]), prony_scaled = true;
-      if (free_[i].prony_time != FreeParameter::npos) s.prony[free_[i].prony_time].tau *= free_[i].to_x(u[i]);
-      if (free_[i].exponent_term != FreeParameter::npos)
-        s.hyperfoam[free_[i].exponent_term].alpha *= free_[i].to_x(u[i]);
+      const FreeParameter& f = free_[i];
+      const double x = f.to_x(u[i]);
+      switch (f.target) {
+        case BaseTarget::hyperfoam_mu: s.hyperfoam[f.term].mu *= x; break;
+        case BaseTarget::hyperfoam_exponent: s.hyperfoam[f.term].alpha *= x; break;
+        case BaseTarget::prony_modulus: a[f.term] *= x, prony_scaled = true; break;
+        case BaseTarget::prony_time: s.prony[f.term].tau *= x; break;
+        case BaseTarget::none: break;
+      }
     }
     if (prony_scaled) {
       for (double x : a) a_sum += x;
