@@ -86,14 +86,13 @@ struct DiagnoseOptions {
   bool base_times = true;
   /// The base refit (and so every joint candidate) also frees a log10 factor in [-0.2, 0.2] on each hyperfoam exponent
   /// alpha_i: the fit's exponents are set on data that contain the effect, and they shape the curves at every strain
-  /// level, so a compression-dependent effect they took up stays in them when only the mu_i are refitted. Off by
-  /// default (`--refit-exponents`). Measured (2026-11-28, docs/physics.md 9.8): on the scale set of
-  /// tools/bench_diagnose.sh strain-dependent Prony c039 and c054 (our own power-law form) are named and Qi-Boyce-like
-  /// Mullins c030 is lost (singles 26/40 either way, pairs 5/10), median error/noise after the named effect 3.55
-  /// against 3.92, 12 % more time. But the protocol step's check (the base refitted under the defaults and under the
-  /// values found) then kept a 300 s dwell and a 10 mm/min preload ramp on the foreign Bouc-Wen case with its exact
-  /// base (DiagnoseForeign.BoucWenHysteresisIsNamedAsFriction), which a more flexible base fits better under the wrong
-  /// protocol: strain-dependent Prony + friction named at 11x noise, against friction + Mullins at 2.1x.
+  /// level, so a compression-dependent effect they took up stays in them when only the mu_i are refitted. The refit
+  /// runs twice (exponents fixed, then free) and the candidates start from its first run (CandidateFit::
+  /// fitted_fixed_exponents). Off by default (`--refit-exponents`). Measured (2026-11-28, tools/bench_diagnose.sh,
+  /// docs/physics.md 9.8): strain-dependent Prony c039 (both sets) and c054 (scale set) are named and the median
+  /// error/noise after the named effect falls (scale 3.32 against 3.92, seed 2025 1.74 against 2.0), but Mullins
+  /// campaigns are lost (Qi-Boyce-like c030 and c052 named friction first, seed c002's weak Ogden-Roxburgh taken up by
+  /// the refit): singles 26/40 (26) on the scale set and 19/40 (21) on seed 2025, pairs 5/10 and 4/10 as before.
   bool base_exponents = false;
   /// Out-of-sample check of a supported candidate (leave-one-test-out, see HeldOutCheck), a veto: off by default.
   /// Measured (2026-11-24, foreign campaigns of tools/bench_diagnose.sh seed 77, base fitted from raw data): with 3
@@ -141,6 +140,9 @@ struct CandidateFit {
   material::MaterialSpec fitted;           ///< the baseline with the candidate at its fitted parameters
                                            ///< (and the base moduli refitted, joint_base or the base refit)
   bool base_refitted = false;              ///< the base moduli were fitted too
+  /// The base refit under base_exponents: `fitted` of its first run, the hyperfoam exponents still fixed (the
+  /// joint candidates start from it); empty otherwise.
+  std::optional<material::MaterialSpec> fitted_fixed_exponents;
   int evaluations = 0;
   double seconds = 0.0;
   std::string name() const;                ///< "kind" or "kind + kind"

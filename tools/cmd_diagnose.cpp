@@ -92,7 +92,8 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
                 "fitted too); from raw data the fit has placed them already and they are always kept");
   sub->add_flag("--refit-exponents", opt->options.base_exponents,
                 "the base refit and every joint candidate also fit a factor in [0.63, 1.58] on each hyperfoam exponent "
-                "alpha_i (off by default: docs/physics.md 9.8)");
+                "alpha_i; the base refit runs twice (exponents fixed, then free) and the candidates start from its first run "
+                "(off by default: it loses some Mullins campaigns, docs/physics.md 9.8)");
   sub->add_flag("--held-out", opt->held_out,
                 "name an effect only if it also predicts each test left out of its fit better than the base refit "
                 "(leave one test out; slower; off by default: with five tests of different kinds it vetoed the right "
