@@ -61,7 +61,7 @@ const std::vector<Entry>& entries() {
          {"pressure_share",
           "s: share of the air's stress that is an isotropic pressure (a laterally free specimen inflates under it and "
           "the damping saturates); the rest, 1 - s, is a drag c(J) D along the rate of deformation (an axial dashpot "
-          "there); both the same in a laterally confined test; s < 1 needs rate_exponent 1",
+          "there); both the same in a laterally confined test",
           1.0, 0.0, 1.0, false, false, false, 0.0, "", 0.0}}},
        [](const BuildContext& c) -> std::shared_ptr<const Material> {
          PneumaticParameters p;

@@ -23,8 +23,6 @@ PneumaticEffect::PneumaticEffect(std::shared_ptr<const Material> inner, Pneumati
     throw std::invalid_argument("pneumatic: rate exponent must be in [0.1, 3]");
   if (!(p_.pressure_share >= 0.0 && p_.pressure_share <= 1.0))
     throw std::invalid_argument("pneumatic: pressure share must be in [0, 1]");
-  if (p_.pressure_share < 1.0 && p_.rate_exponent != 1.0)
-    throw std::invalid_argument("pneumatic: a drag share (pressure share < 1) needs the linear flow (rate exponent 1)");
 }
 
 namespace {
@@ -140,27 +138,76 @@ PneumaticEffect::Denominator PneumaticEffect::maxwell_denominator(double J, doub
   return {1.0 + dt * M * std::pow(J, n) / c0, dt * M * n * std::pow(J, n - 1.0) / c0 + dt * dM * std::pow(J, n) / c0};
 }
 
+namespace {
+
+/// A: B for symmetric 3x3 tensors.
+double ddot(const Mat3& A, const Mat3& B) { return A.cwiseProduct(B).sum(); }
+
+}  // namespace
+
+PneumaticEffect::Drag PneumaticEffect::linear_drag(double J, const Mat3& dE, double dt, const Mat3& Y_old) const {
+  const double c = coefficient(J), n = p_.permeability_exponent;
+  if (std::isinf(p_.air_modulus)) {  // dashpot: Y = c(J) dE/dt, d(c/dt)/dJ = -n c/(dt J)
+    const double alpha = c / dt;
+    return {alpha * dE, alpha, -n * alpha * dE, Mat3::Zero(), Mat3::Zero()};
+  }
+  // Maxwell: Y = (Y_old + M dE)/B, B = 1 + dt M(J)/c(J) (as in darcy_pressure).
+  const double M = air_modulus(J), dM = -p_.air_modulus_exponent * M / J;
+  const auto [B, dB] = maxwell_denominator(J, dt);
+  const Mat3 Y = (Y_old + M * dE) / B;
+  return {Y, M / B, J * (dM * dE - dB * Y) / B, Mat3::Zero(), Mat3::Zero()};
+}
+
+PneumaticEffect::Drag PneumaticEffect::power_law_drag(const Mat3& Ci, double J, const Mat3& dE, double dt,
+                                                      const Mat3& Y_old) const {
+  // |A|_C = sqrt(C^-1 A C^-1 : A), the norm of the spatial tensor F^-T A F^-1 (for A = dE/dt: |D|); its square varies
+  // along X by 2 (C^-1 A C^-1) : dA - 4 (C^-1 A C^-1 A C^-1) : X (dC^-1 = -2 C^-1 X C^-1).
+  const double q = p_.rate_exponent, c = coefficient(J), n = p_.permeability_exponent, eps2 = kPneumaticRestRate * kPneumaticRestRate;
+  if (std::isinf(p_.air_modulus)) {
+    // dashpot: Y = c(J) h(r) Edot, Edot = dE/dt, r = |Edot|_C, h(r) = (r^2 + v_eps^2)^((q-1)/2); dh = kappa d(r^2)
+    const Mat3 Ed = dE / dt, W = Ci * Ed * Ci, V = W * Ed * Ci;
+    const double r2 = ddot(W, Ed), h = std::pow(r2 + eps2, 0.5 * (q - 1.0));
+    const double kappa = 0.5 * (q - 1.0) * std::pow(r2 + eps2, 0.5 * (q - 3.0));
+    const double alpha = c * h / dt;
+    return {c * h * Ed, alpha, -n * c * h * Ed, c * kappa * (2.0 * W / dt - 4.0 * V), Ed};
+  }
+  // Maxwell: trial Y_tr = Y_old + M dE; the dashpot rate Edot_v is parallel to it, Y = Y_tr - M dt Edot_v =
+  // c h(rho) Edot_v, so its norm rho solves c g(rho) + M dt rho = a = |Y_tr|_C (maxwell_dashpot_rate) and
+  // Y = phi Y_tr, phi = c g(rho)/a (= c h(rho)/(c h(rho) + M dt)).
+  const double M = air_modulus(J), dM_dJ = -p_.air_modulus_exponent * M / J, Mdt = M * dt;
+  const Mat3 Y_tr = Y_old + M * dE;
+  const Mat3 W = Ci * Y_tr * Ci, V = W * Y_tr * Ci;
+  const double a = std::sqrt(std::max(0.0, ddot(W, Y_tr)));
+  const auto [rho, f] = maxwell_dashpot_rate(c, Mdt, a, q);
+  if (a == 0.0) {  // no trial stress: Y = 0, dY = phi(0) dY_tr with phi(0) = c h(0)/(c h(0) + M dt), h(0) = f.dg
+    const double phi0 = c * f.dg / (c * f.dg + Mdt);
+    return {Mat3::Zero(), phi0 * M, phi0 * J * dM_dJ * dE, Mat3::Zero(), Mat3::Zero()};
+  }
+  // phi = c g(rho)/a, not 1 - M dt rho/a: with a stiff air spring (phi -> 0) the difference cancels; rho itself is
+  // found to relative precision, and so is g(rho).
+  const double phi = c * f.g / a;
+  // Along X, with s = C^-1 : X: dY_tr = M X + s J M' dE; da = [X : (M W - 2 V) + s J M' (W : dE)]/a;
+  // drho = (da - dc g - dM dt rho)/(c g' + M dt), dc = -n c s, dM = J M' s; dphi = (dc g + c g' drho)/a - phi da/a.
+  const double slope = c * f.dg + Mdt;
+  const Mat3 da_T = (M * W - 2.0 * V) / a;  // da = da_T : X + da_s s
+  const double da_s = J * dM_dJ * ddot(W, dE) / a;
+  const double drho_s = (da_s + n * c * f.g - J * dM_dJ * dt * rho) / slope;  // drho = da_T:X / slope + drho_s s
+  const double dphi_s = (-n * c * f.g + c * f.dg * drho_s) / a - phi * da_s / a;
+  const Mat3 dphi_T = (c * f.dg / (slope * a) - phi / a) * da_T;
+  return {phi * Y_tr, phi * M, phi * J * dM_dJ * dE + dphi_s * Y_tr, dphi_T, Y_tr};
+}
+
 void PneumaticEffect::add_drag(PointResponse& r, const Mat3& Ci, double J, const Mat3& dE, double dt,
                                std::span<const double> Y_old, std::span<double> Y_new, double weight) const {
-  const double c = coefficient(J), n = p_.permeability_exponent;
-  // Y and its derivative dY[X] = alpha X + (C^-1 : X) Z along a strain direction X (dJ = J C^-1 : X).
-  double alpha = c / dt;
-  Mat3 Y = alpha * dE, Z = -n * alpha * dE;  // dashpot: alpha = c(J)/dt, d alpha/dJ = -n alpha/J
-  if (!std::isinf(p_.air_modulus)) {
-    // Maxwell: Y = (Y_old + M dE)/B, B = 1 + dt M(J)/c(J) (as in darcy_pressure).
-    const double M = air_modulus(J), dM = -p_.air_modulus_exponent * M / J;
-    const auto [B, dB] = maxwell_denominator(J, dt);
-    alpha = M / B;
-    Y = (from_voigt_stress(Eigen::Map<const Vec6>(Y_old.data())) + M * dE) / B;
-    Z = J * (dM * dE - dB * Y) / B;
-  }
-  Eigen::Map<Vec6>(Y_new.data()) = to_voigt_stress(Y);
-  const Mat3 CiYCi = Ci * Y * Ci;
+  const Mat3 Y_prev = from_voigt_stress(Eigen::Map<const Vec6>(Y_old.data()));
+  const Drag d = p_.rate_exponent == 1.0 ? linear_drag(J, dE, dt, Y_prev) : power_law_drag(Ci, J, dE, dt, Y_prev);
+  Eigen::Map<Vec6>(Y_new.data()) = to_voigt_stress(d.Y);
+  const Mat3 CiYCi = Ci * d.Y * Ci;
   r.S += weight * to_voigt_stress(CiYCi);
   // dS[X] = -2 C^-1 X C^-1 Y C^-1 - 2 C^-1 Y C^-1 X C^-1 + C^-1 dY[X] C^-1 (dC^-1 = -2 C^-1 X C^-1), column by column.
   for (int k = 0; k < 6; ++k) {
     const Mat3 X = from_voigt_strain(Vec6::Unit(k));
-    const Mat3 dY = alpha * X + Ci.cwiseProduct(X).sum() * Z;
+    const Mat3 dY = d.alpha * X + ddot(Ci, X) * d.Z + ddot(d.T, X) * d.H;
     const Mat3 dS = -2.0 * (Ci * X * CiYCi + CiYCi * X * Ci) + Ci * dY * Ci;
     r.dS_dE.col(k) += weight * to_voigt_stress(dS);
   }

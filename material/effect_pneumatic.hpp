@@ -45,8 +45,10 @@
 /// the increment (P11 = c(l) l_dot/l^2 as a dashpot, the same Maxwell spring M dl/l^2 per increment; the stored Y is
 /// carried in Lagrangian components, (l_old/l)^2 more than the pressure); with nu = 0 and free laterals it adds no
 /// lateral stress (D22 = D33 = 0), so the air acts as an axial dashpot or Maxwell branch there. Both parts share c(J),
-/// M(J) and tau(J); S_air = s S_pressure + (1 - s) S_drag (docs/physics.md 5.1). The drag needs the linear flow
-/// (rate_exponent 1).
+/// M(J) and tau(J); S_air = s S_pressure + (1 - s) S_drag (docs/physics.md 5.1). With a power-law flow the drag follows
+/// the norm of the rate of deformation, tau_d = c(J) h(|D|) D, h(r) = (r^2 + v_eps^2)^((q-1)/2), |D| = |dE/dt|_C
+/// (|A|_C = sqrt(C^-1 A C^-1 : A)); with trapped air the dashpot rate is parallel to the trial stress Y_old + M dE and
+/// its norm solves the pressure form's scalar equation (a radial return, power_law_drag).
 /// Own state: the air pressure p [MPa] (one double), then Y (6 doubles, stress-like Voigt) when s < 1. dt = 0 (an
 /// instantaneous response) adds no air stress and keeps the state.
 /// Frequency domain about a relaxed base F_b (p_air = 0 and Y = 0 there), added to the inner tangent:
@@ -68,7 +70,7 @@ struct PneumaticParameters {
   double air_modulus = std::numeric_limits<double>::infinity();  ///< M0 [MPa], > 0, at J = 1; infinite: Darcy dashpot
   double air_modulus_exponent = 0.0;  ///< r [-], in [0, 5]: M(J) = M0 J^-r (0: constant; 1: isothermal gas, Boyle)
   double rate_exponent = 1.0;        ///< q [-], in [0.1, 3]: flow law p = c(J) g(v), g ~ sign(v)|v|^q; 1: Darcy
-  double pressure_share = 1.0;       ///< s [-], in [0, 1]: share of isotropic pressure; 1 - s: drag c(J) D (q = 1)
+  double pressure_share = 1.0;       ///< s [-], in [0, 1]: share of isotropic pressure; 1 - s: drag c(J) h(|D|) D
 };
 
 /// Regularisation rate v_eps [1/s] of the power-law flow g(v) = v (v^2 + v_eps^2)^((q-1)/2).
@@ -104,6 +106,18 @@ class PneumaticEffect final : public EffectDecorator {
     double B, dB_dJ;  ///< B = 1 + dt M(J)/c(J) [-] of the backward-Euler Maxwell step, and its derivative by J
   };
   Denominator maxwell_denominator(double J, double dt) const;
+  /// The drag's Lagrangian stress Y [MPa] at the increment's end and its derivative along a strain direction X,
+  ///   dY[X] = alpha X + (C^-1 : X) Z + (T : X) H   (alpha [MPa], Z, T, H tensors; T = 0 for the linear flow).
+  struct Drag {
+    Mat3 Y;
+    double alpha;
+    Mat3 Z, T, H;
+  };
+  /// Linear flow (q = 1): dashpot Y = c(J) dE/dt, or Maxwell (Y_old + M dE)/B; Y_old [MPa].
+  Drag linear_drag(double J, const Mat3& dE, double dt, const Mat3& Y_old) const;
+  /// Power-law flow (q != 1) along the norm |dE/dt|_C = |D| of the rate (docs/physics.md 5.1): dashpot closed form, or
+  /// Maxwell by the same scalar Newton as the pressure (maxwell_dashpot_rate) on the norm of the trial stress.
+  Drag power_law_drag(const Mat3& Ci, double J, const Mat3& dE, double dt, const Mat3& Y_old) const;
   /// Adds weight x the drag's PK2 stress C^-1 Y C^-1 [MPa] and its exact increment tangent to r; Y_new <- Y. C^-1 and J
   /// at the increment's end, dE = E - E_old (Green-Lagrange).
   void add_drag(PointResponse& r, const Mat3& Ci, double J, const Mat3& dE, double dt, std::span<const double> Y_old,
