@@ -444,13 +444,13 @@ CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector
   try {
     Start s = scan_start(*model, u, scan, spare);
     u = std::move(s.u);
-    if (!std::isfinite(s.chi2))
-      throw std::runtime_error("the model with this effect fails at every start value tried");
+    if (!std::isfinite(s.chi2)) throw std::runtime_error("the model with this effect fails at every start value tried");
     std::vector<double> start = u;
     ceres::Solver::Summary summary = minimise(*model, u, n_residuals, options.max_iterations, spare);
     if (polish && (summary.IsSolutionUsable() || (summary.termination_type == ceres::FAILURE && u != start))) {
       fit.fitted_fixed_exponents = model->spec_at(u.data());
-      auto polished = std::make_unique<CandidateModel>(*fit.fitted_fixed_exponents, start_effects, campaign, noise, options);
+      auto polished =
+          std::make_unique<CandidateModel>(*fit.fitted_fixed_exponents, start_effects, campaign, noise, options);
       polished->free_base_moduli(options.base_times, true);
       std::vector<double> v = polished->start();
       start = v;

@@ -162,7 +162,8 @@ PneumaticEffect::Drag PneumaticEffect::power_law_drag(const Mat3& Ci, double J, 
                                                       const Mat3& Y_old) const {
   // |A|_C = sqrt(C^-1 A C^-1 : A), the norm of the spatial tensor F^-T A F^-1 (for A = dE/dt: |D|); its square varies
   // along X by 2 (C^-1 A C^-1) : dA - 4 (C^-1 A C^-1 A C^-1) : X (dC^-1 = -2 C^-1 X C^-1).
-  const double q = p_.rate_exponent, c = coefficient(J), n = p_.permeability_exponent, eps2 = kPneumaticRestRate * kPneumaticRestRate;
+  const double q = p_.rate_exponent, c = coefficient(J), n = p_.permeability_exponent,
+               eps2 = kPneumaticRestRate * kPneumaticRestRate;
   if (std::isinf(p_.air_modulus)) {
     // dashpot: Y = c(J) h(r) Edot, Edot = dE/dt, r = |Edot|_C, h(r) = (r^2 + v_eps^2)^((q-1)/2); dh = kappa d(r^2)
     const Mat3 Ed = dE / dt, W = Ci * Ed * Ci, V = W * Ed * Ci;

@@ -126,7 +126,8 @@ TEST(EffectPneumaticDrag, MixedShareComplexTangentMatchesTimeDomainSine) {
 
 TEST(EffectPneumaticDrag, ShareIsChecked) {
   for (double bad : {-0.1, 1.1, std::nan("")})
-    EXPECT_THROW(PneumaticEffect(test::effect_test_foam(), with_share(strong_air(), bad)), std::invalid_argument) << bad;
+    EXPECT_THROW(PneumaticEffect(test::effect_test_foam(), with_share(strong_air(), bad)), std::invalid_argument)
+        << bad;
   EXPECT_NO_THROW(PneumaticEffect(test::effect_test_foam(), with_share(power_law_air(0.6), 0.5)));
   // Through a material file: one message naming the file and the effect.
   const EffectSpec spec{"pneumatic", {{"pressure_share", 1.5}}};
@@ -134,7 +135,8 @@ TEST(EffectPneumaticDrag, ShareIsChecked) {
     apply_effects(test::effect_test_foam(), test::effect_test_foam(), {spec}, "seat.json");
     FAIL() << "accepted a pressure share of 1.5";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("seat.json: effects[0].pressure_share: must be >= 0 and <= 1"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("seat.json: effects[0].pressure_share: must be >= 0 and <= 1"),
+              std::string::npos)
         << e.what();
   }
 }
@@ -152,7 +154,8 @@ TEST(EffectPneumaticDrag, PowerLawDragTangentMatchesFiniteDifferences) {
       const PneumaticEffect stiffening(test::effect_test_visco(), stiff);
       for (int trial = 0; trial < 3; ++trial) {
         const Mat3 F_old = test::random_F(rng, 0.3), F_new = test::random_F(rng, 0.3);
-        SCOPED_TRACE("q " + std::to_string(q) + ", share " + std::to_string(share) + ", trial " + std::to_string(trial));
+        SCOPED_TRACE("q " + std::to_string(q) + ", share " + std::to_string(share) + ", trial " +
+                     std::to_string(trial));
         EXPECT_LT(test::increment_tangent_error(dashpot, F_old, F_new, 0.01, virgin(dashpot)), 1e-6);
         expect_exact_tangent_from_air_pressure(dashpot, F_old, F_new);
         expect_exact_tangent_from_air_pressure(maxwell, F_old, F_new);
@@ -165,25 +168,27 @@ TEST(EffectPneumaticDrag, ConfinedPowerLawDragIsItsClosedFormAndThePressureToFir
   // F = diag(l, 1, 1), dashpot drag with q = 0.5 and 1.5: Edot = (l^2 - l_old^2)/(2 dt), |D| = |Edot|/l^2,
   // P11 = c(l) h(|D|) Edot / l^3 with h = (|D|^2 + v_eps^2)^((q-1)/2) (1e-12 relative, at 0.02 to 2 /s). Along a ramp
   // 1 -> 0.8 in steps of 0.004 the power-law pressure form gives the same axial stress to first order in the increment:
-  // their rates differ by (l + l_old)/(2 l), so the stresses by its power q, at most 1 + 0.0025 q (tolerance 0.3 % x q);
+  // their rates differ by (l + l_old)/(2 l), so the stresses by its power q, at most 1 + 0.0025 q (tolerance 0.3 % q);
   // a huge air modulus gives back the dashpot (1e-6).
   for (double q : {0.5, 1.5}) {
     const PneumaticEffect drag(test::effect_test_foam(), with_share(power_law_air(q), 0.0));
     for (double l_old : {1.0, 0.9, 0.7})
       for (double rate : {0.02, 2.0}) {
         const double l = l_old - 0.01, dt = 0.01 / rate, Ed = (l * l - l_old * l_old) / (2.0 * dt);
-        const double D = std::abs(Ed) / (l * l), h = std::pow(D * D + kPneumaticRestRate * kPneumaticRestRate, 0.5 * (q - 1.0));
+        const double D = std::abs(Ed) / (l * l),
+                     h = std::pow(D * D + kPneumaticRestRate * kPneumaticRestRate, 0.5 * (q - 1.0));
         const double exact = drag.coefficient(l) * h * Ed / (l * l * l);
         EXPECT_NEAR(extra_P11(drag, l_old, l, dt), exact, 1e-12 * std::abs(exact)) << q << " " << l_old << " " << rate;
       }
     expect_same_along_a_ramp(PneumaticEffect(test::effect_test_foam(), power_law_air(q)), drag, 3e-3 * q);
-    expect_same_along_a_ramp(drag, PneumaticEffect(test::effect_test_foam(), with_share(power_law_air(q, 1e9), 0.0)), 1e-6);
+    expect_same_along_a_ramp(drag, PneumaticEffect(test::effect_test_foam(), with_share(power_law_air(q, 1e9), 0.0)),
+                             1e-6);
   }
 }
 
 TEST(EffectPneumaticDrag, PowerLawTrappedAirDragRelaxesAsTheClosedForm) {
   // Confined, a 2 % step in 1 ms from l = 0.8, then a hold: y = |Y|_C = Y11/l^2 = l P11 obeys dy/dt = -M (y/c)^(1/q)
-  // (v_eps negligible), y(t)^(1-r) = y0^(1-r) - (1-r) M c^-r t, r = 1/q, as the pressure form's closed form. q = 0.6 and
+  // (v_eps negligible), y(t)^(1-r) = y0^(1-r) - (1-r) M c^-r t, r = 1/q, as the pressure form does. q = 0.6 and
   // 1.6, M = 2 kPa, dt = 1e-5 s (backward Euler, O(dt)): within 1 % while y falls to a fifth of y0.
   for (double q : {0.6, 1.6}) {
     const double M = 2e-3, r = 1.0 / q, l = 0.78;
