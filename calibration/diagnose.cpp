@@ -447,7 +447,9 @@ CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector
     if (!std::isfinite(s.chi2)) throw std::runtime_error("the model with this effect fails at every start value tried");
     std::vector<double> start = u;
     ceres::Solver::Summary summary = minimise(*model, u, n_residuals, options.max_iterations, spare);
-    if (polish && (summary.IsSolutionUsable() || (summary.termination_type == ceres::FAILURE && u != start))) {
+    // Levenberg-Marquardt stopped where the model run fails close by, after moving: its best point is kept
+    auto stopped_at_failure = [&] { return summary.termination_type == ceres::FAILURE && u != start; };
+    if (polish && (summary.IsSolutionUsable() || stopped_at_failure())) {
       fit.fitted_fixed_exponents = model->spec_at(u.data());
       auto polished =
           std::make_unique<CandidateModel>(*fit.fitted_fixed_exponents, start_effects, campaign, noise, options);
@@ -459,13 +461,12 @@ CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector
       model = std::move(polished);
       u = std::move(v);
     }
-    const bool stopped_at_failure = summary.termination_type == ceres::FAILURE && u != start;
-    fit.converged = summary.IsSolutionUsable() || stopped_at_failure;
+    fit.converged = summary.IsSolutionUsable() || stopped_at_failure();
     fit.message = summary.BriefReport();
     if (summary.termination_type == ceres::NO_CONVERGENCE)
       fit.warning = "did not converge within " + std::to_string(options.max_iterations) +
                     " iterations; ranked with the best parameters found (chi2/N may still fall: raise --max-iterations)";
-    if (stopped_at_failure)
+    if (stopped_at_failure())
       fit.warning = "Levenberg-Marquardt stopped where the model run fails close by (" + summary.message +
                     "); ranked with the best parameters evaluated";
     const auto r = model->compare_at(u.data());
