@@ -35,9 +35,9 @@ std::string fmt(double v, int digits = 3) {
 
 /// The base parameters the base refit and joint candidates fit, in words: "hyperfoam mu_i and alpha_i, Prony g_i and
 /// tau_i" (the exponents and times as the options free them).
-std::string refitted_base_parameters(const DiagnoseOptions& o) {
-  return std::string("hyperfoam mu_i") + (o.base_exponents ? " and alpha_i" : "") + ", Prony g_i" +
-         (o.base_times ? " and tau_i" : "");
+std::string refitted_base_parameters(const DiagnoseOptions& o, bool polished = false) {
+  return std::string("hyperfoam mu_i") + (o.base_exponents || polished ? " and alpha_i" : "") + ", Prony g_i" +
+         (o.base_times || polished ? " and tau_i" : "");
 }
 
 /// chi2: sum of squared noise-normalised residuals of a comparison.
@@ -861,7 +861,16 @@ std::vector<CandidateFit> fit_pairs(const CandidateJobs& c, const std::vector<Ca
     });
   }
   std::vector<CandidateFit> pairs = run_all(jobs, c.options.threads, expected_seconds, &c.spare);
-  for (const auto& f : pairs) log_fit(log, f, false);
+  const int inherited = top.empty() ? 0 : fits[top.front()].polish_added;  // started from the polished single's base
+  for (auto& f : pairs) {
+    if (inherited > 0 && std::isfinite(f.bic)) {
+      f.polish_added = inherited;  // its base's Prony times and exponents were refitted, in that single's polish
+      f.parameters += inherited;
+      f.bic += inherited * std::log(static_cast<double>(c.d.residuals));
+      f.delta_bic = c.d.baseline_bic - f.bic;
+    }
+    log_fit(log, f, false);
+  }
   return pairs;
 }
 
@@ -876,6 +885,49 @@ double base_gain(const Diagnosis& d) {
   return d.base_refit && d.base_refit->converged ? std::max(0.0, d.base_refit->delta_bic) : 0.0;
 }
 
+/// Step 2b: the options.polished_singles best singles that beat the reference by strong_evidence, each refitted from its
+/// own fit with every Prony time and hyperfoam exponent free as well (DiagnoseOptions::polished_singles); the polished
+/// fit replaces the single's whenever it converged (so that the leaders are ranked on the same footing), keeping the
+/// dBIC before it for the support test.
+void polish_leading_singles(const CandidateJobs& c, std::vector<CandidateFit>& fits, std::ostream& log) {
+  const DiagnoseOptions& o = c.options;
+  if (o.polished_singles <= 0 || !o.joint_base || !c.base_ref() || base_refit_at_noise(c.d, o)) return;
+  std::vector<std::size_t> order(fits.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return fits[a].delta_bic > fits[b].delta_bic; });
+  std::vector<std::size_t> leaders;
+  for (std::size_t i : order)
+    if (fits[i].converged && fits[i].delta_bic > base_gain(c.d) + o.strong_evidence &&
+        static_cast<int>(leaders.size()) < o.polished_singles)
+      leaders.push_back(i);
+  DiagnoseOptions free_all = o;
+  free_all.base_times = free_all.base_exponents = true;
+  std::vector<std::function<CandidateFit()>> jobs;
+  std::vector<double> expected_seconds;
+  for (std::size_t i : leaders) {
+    expected_seconds.push_back(fits[i].seconds);
+    jobs.push_back([&c, &f = fits[i], free_all] {
+      return fit_candidate(base_of(f), f.effects, c.campaign, c.d.noise, c.d.residuals, c.d.baseline_bic, free_all,
+                           Scan::none, true, &c.spare);
+    });
+  }
+  std::vector<CandidateFit> polished = run_all(jobs, o.threads, expected_seconds, &c.spare);
+  for (std::size_t j = 0; j < leaders.size(); ++j) {
+    CandidateFit& f = fits[leaders[j]];
+    CandidateFit& p = polished[j];
+    log << "diagnose: " << f.name() << " polished (Prony times and hyperfoam exponents free): dBIC "
+        << fmt(f.delta_bic, 4) << " -> " << fmt(p.delta_bic, 4) << ", " << p.evaluations << " runs, "
+        << fmt(p.seconds, 2) << " s" << (p.converged ? "" : " (failed, not kept: " + p.message + ")") << "\n";
+    if (!p.converged) continue;
+    p.polished = true;
+    p.polish_added = p.parameters - f.parameters;
+    p.delta_bic_unpolished = f.delta_bic;
+    p.evaluations += f.evaluations;
+    p.seconds += f.seconds;
+    f = std::move(p);
+  }
+}
+
 /// Ranking: a single is supported when it beats the reference by strong_evidence, a pair when it beats the
 /// best single and the reference by strong_evidence, none when the reference alone brings every test to the noise
 /// level; supported first, then by dBIC; warnings for failed or unconverged candidates.
@@ -883,7 +935,8 @@ void rank_candidates(std::vector<CandidateFit> fits, std::vector<CandidateFit> p
                      const DiagnoseOptions& options, Diagnosis& d) {
   const double gain = base_gain(d);
   const bool base_enough = base_refit_at_noise(d, options);
-  for (auto& f : fits) f.supported = !base_enough && f.converged && f.delta_bic > gain + options.strong_evidence;
+  for (auto& f : fits)
+    f.supported = !base_enough && f.converged && f.support_delta_bic() > gain + options.strong_evidence;
   const double best_single = top.empty() ? 0.0 : fits[top.front()].delta_bic;
   for (auto& f : pairs)
     f.supported = !base_enough && f.converged && f.delta_bic > std::max(best_single, gain) + options.strong_evidence;
@@ -1043,7 +1096,8 @@ void winner_verdict(const material::MaterialSpec& baseline, const DiagnoseOption
   o << "Add " << w.name() << " (dBIC " << fmt(w.delta_bic, 4) << " for " << w.parameters
     << " parameters; chi2/N " << fmt(d.baseline_chi2 / d.residuals) << " -> " << fmt(w.chi2 / d.residuals) << "). ";
   if (w.base_refitted)
-    o << "Fitted together with the base (joint): use material_extended.json, whose " << refitted_base_parameters(options)
+    o << "Fitted together with the base (joint): use material_extended.json, whose "
+      << refitted_base_parameters(options, w.polish_added > 0)
       << " are refitted too; the fragment alone on the old base is not the fitted model. ";
   if (d.winner_at_noise_level) {
     o << "With it every test falls to the noise level (within " << fmt(options.compare.noise_level_ratio, 2) << "x).";
@@ -1183,6 +1237,7 @@ Diagnosis diagnose(const material::MaterialSpec& baseline, const Campaign& campa
     const CandidateJobs jobs{baseline, diagnosed, options, d, spare};
     std::vector<CandidateFit> singles =
         fit_singles_and_reference(jobs, single_candidates(baseline, options, d.warnings), d, log);
+    polish_leading_singles(jobs, singles, log);
     const std::vector<std::size_t> top = pair_sources(singles, options);
     std::vector<CandidateFit> pairs = fit_pairs(jobs, singles, top, log);
     rank_candidates(std::move(singles), std::move(pairs), top, options, d);

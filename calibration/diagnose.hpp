@@ -24,9 +24,13 @@
 ///     the projected line search by bisection, cost only) on the noise-normalised residuals
 ///     (compare.hpp normalised_residuals). Candidates run on `threads` threads, longest pairs first; a thread with no
 ///     candidate left lends its core to the Jacobians and start scans of those still running (parallel_jobs.hpp).
+///  2b. Polish (options.polished_singles, joint only): the best singles that beat the reference are refitted from their
+///     own fit with the base's Prony times and hyperfoam exponents free too, and ranked by that fit's BIC (the added
+///     parameters counted); support (step 4) is still judged by the fit before the polish against the reference.
 ///  3. Pairs (only when the best single leaves some test beyond noise): the best single combined with each of the
 ///     next `pairs_from` - 1, started from their single fits (the best single's base), the start scan over the added
-///     effect's parameters only (the best single's effect held at its fit).
+///     effect's parameters only (the best single's effect held at its fit); a pair started from a polished single
+///     counts the parameters its polish added.
 ///  4. Penalised figure: BIC = chi2 + k ln N (chi2: sum of squared noise-normalised residuals, N their
 ///     number, k the fitted parameters); dBIC = BIC_baseline - BIC_candidate (> 0: better). A candidate
 ///     is SUPPORTED when dBIC > strong_evidence (Kass & Raftery: > 10 is very strong) AND it beats by
@@ -94,6 +98,18 @@ struct DiagnoseOptions {
   /// campaigns are lost (Qi-Boyce-like c030 and c052 named friction first, seed c002's weak Ogden-Roxburgh taken up by
   /// the refit): singles 26/40 (26) on the scale set and 19/40 (21) on seed 2025, pairs 5/10 and 4/10 as before.
   bool base_exponents = false;
+  /// Step 2b: the `polished_singles` best singles that beat the reference by strong_evidence are fitted once more, each
+  /// from its own fit, with a log10 factor on every Prony time tau_i (in [-0.5, 0.5]) and hyperfoam exponent alpha_i (in
+  /// [-0.2, 0.2]) free as well (CandidateFit::polished); the singles are then ranked by the polished BIC (the added
+  /// parameters counted, the same for every polished single) and paired from there. Whether an effect is supported
+  /// still asks whether its fit before the polish beats the reference: a base whose whole spectrum and exponents are
+  /// free absorbs an air flow or a weak effect (a stretch-dependent relaxation branch is a Prony term; docs/physics.md
+  /// 9.8, "Prony times from raw data"). What the polish changes is which supported effect explains the data best once
+  /// its base is no longer held at the times and exponents that `cushion fit` placed on data containing the effect, and
+  /// the error left after the named effect. 0: off. Measured (2026-11-28, tools/bench_diagnose.sh, docs/physics.md
+  /// 9.8): median error/noise after the named effect 3.92 -> 2.49 (scale set) and 2.0 -> 1.57 (seed 2025); singles
+  /// 26/40 (26) and 20/40 (21), pairs 4/10 (5) and 4/10 (4), controls 10/10; 15.3 s per campaign (14.6), max 27.1 s.
+  int polished_singles = 2;
   /// Out-of-sample check of a supported candidate (leave-one-test-out, see HeldOutCheck), a veto: off by default.
   /// Measured (2026-11-24, foreign campaigns of tools/bench_diagnose.sh seed 77, base fitted from raw data): with 3
   /// rates and 2 preloads, leaving out the slowest rate or the lower preload is an extrapolation that no refit on the
@@ -140,6 +156,15 @@ struct CandidateFit {
   material::MaterialSpec fitted;           ///< the baseline with the candidate at its fitted parameters
                                            ///< (and the base moduli refitted, joint_base or the base refit)
   bool base_refitted = false;              ///< the base moduli were fitted too
+  /// Step 2b (DiagnoseOptions::polished_singles): refitted from its fit with the base's Prony times and hyperfoam
+  /// exponents free too; `parameters`, chi2 and dBIC are the polished fit's. polish_added: the parameters the polish
+  /// added (for a pair started from a polished single: that single's, counted in `parameters`); delta_bic_unpolished: the dBIC before it, which decides whether the single is supported (the reference
+  /// has no polish).
+  bool polished = false;
+  int polish_added = 0;
+  double delta_bic_unpolished = 0.0;
+  /// dBIC that decides support against the reference: the unpolished one.
+  double support_delta_bic() const { return polished ? delta_bic_unpolished : delta_bic; }
   /// The base refit under base_exponents: `fitted` of its first run, the hyperfoam exponents still fixed (the
   /// joint candidates start from it); empty otherwise.
   std::optional<material::MaterialSpec> fitted_fixed_exponents;

@@ -94,6 +94,13 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
                 "the base refit and every joint candidate also fit a factor in [0.63, 1.58] on each hyperfoam exponent "
                 "alpha_i; the base refit runs twice (exponents fixed, then free) and the candidates start from its first run "
                 "(off by default: it loses some Mullins campaigns, docs/physics.md 9.8)");
+  sub->add_option(
+         "--polish", opt->options.polished_singles,
+         "refit the N best supported singles once more with the base's Prony times and hyperfoam exponents free "
+         "too and rank them by that fit (default " +
+             std::to_string(cushion::calibration::DiagnoseOptions{}.polished_singles) +
+             "; 0: off; support is still judged against the base refit without them)")
+      ->check(CLI::Range(0, 5));
   sub->add_flag("--held-out", opt->held_out,
                 "name an effect only if it also predicts each test left out of its fit better than the base refit "
                 "(leave one test out; slower; off by default: with five tests of different kinds it vetoed the right "
