@@ -815,14 +815,20 @@ std::vector<CandidateFit> fit_singles_and_reference(const CandidateJobs& c,
   return fits;
 }
 
+/// Indices of `fits`, largest dBIC first.
+std::vector<std::size_t> best_first(const std::vector<CandidateFit>& fits) {
+  std::vector<std::size_t> order(fits.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return fits[a].delta_bic > fits[b].delta_bic; });
+  return order;
+}
+
 /// The singles to combine in pairs, best dBIC first: the `pairs_from` best converged ones with dBIC > strong_evidence,
 /// none when the best single already brings every test to the noise level (nothing left for a second effect). A single
 /// that explains nothing on its own (dBIC 0 to 10) was never part of a right pair: bench seed 2025, three such pairs of
 /// 60 campaigns, 5-12 s each, none right.
 std::vector<std::size_t> pair_sources(const std::vector<CandidateFit>& fits, const DiagnoseOptions& options) {
-  std::vector<std::size_t> order(fits.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return fits[a].delta_bic > fits[b].delta_bic; });
+  const std::vector<std::size_t> order = best_first(fits);
   std::vector<std::size_t> top;
   const bool single_enough = !order.empty() && fits[order.front()].converged &&
                              fits[order.front()].compare.at_noise_level(options.compare.noise_level_ratio);
@@ -892,11 +898,8 @@ double base_gain(const Diagnosis& d) {
 void polish_leading_singles(const CandidateJobs& c, std::vector<CandidateFit>& fits, std::ostream& log) {
   const DiagnoseOptions& o = c.options;
   if (o.polished_singles <= 0 || !o.joint_base || !c.base_ref() || base_refit_at_noise(c.d, o)) return;
-  std::vector<std::size_t> order(fits.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return fits[a].delta_bic > fits[b].delta_bic; });
   std::vector<std::size_t> leaders;
-  for (std::size_t i : order)
+  for (std::size_t i : best_first(fits))
     if (fits[i].converged && fits[i].delta_bic > base_gain(c.d) + o.strong_evidence &&
         static_cast<int>(leaders.size()) < o.polished_singles)
       leaders.push_back(i);
