@@ -427,65 +427,86 @@ CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector
   const auto t0 = Clock::now();
   CandidateFit fit;
   for (const auto& e : start_effects) fit.kinds.push_back(e.kind);
-  // A joint candidate has every parameter of the reference. With base_exponents the reference is fitted twice: with
-  // the hyperfoam exponents fixed, then from there with them free; the joint candidates start from the first
-  // (fitted_fixed_exponents) and fit the exponents with their effect in one run (docs/physics.md 9.8).
-  const bool polish = refit_base && options.base_exponents && start_effects.empty();
-  auto model = std::make_unique<CandidateModel>(base, start_effects, campaign, noise, options);
+  CandidateModel model(base, start_effects, campaign, noise, options);
   if (refit_base) {
-    model->free_base_moduli(options.base_times, options.base_exponents && !polish);
+    // a joint candidate has every parameter of the reference
+    model.free_base_moduli(options.base_times, options.base_exponents);
     fit.base_refitted = true;
     if (start_effects.empty())
       fit.kinds.push_back("base refit (" + refitted_base_parameters(options) + ")");
   }
-  std::vector<double> u = model->start();
-  fit.parameters = static_cast<int>(u.size() + (polish ? base.hyperfoam.size() : 0));
-  int evaluations_first = 0;  // of the first run, when polished
+  std::vector<double> u = model.start();
+  fit.parameters = static_cast<int>(u.size());
   try {
-    Start s = scan_start(*model, u, scan, spare);
+    Start s = scan_start(model, u, scan, spare);
     u = std::move(s.u);
     if (!std::isfinite(s.chi2)) throw std::runtime_error("the model with this effect fails at every start value tried");
-    std::vector<double> start = u;
-    ceres::Solver::Summary summary = minimise(*model, u, n_residuals, options.max_iterations, spare);
+    const std::vector<double> start = u;
+    const ceres::Solver::Summary summary = minimise(model, u, n_residuals, options.max_iterations, spare);
     // Levenberg-Marquardt stopped where the model run fails close by, after moving: its best point is kept
-    auto stopped_at_failure = [&] { return summary.termination_type == ceres::FAILURE && u != start; };
-    if (polish && (summary.IsSolutionUsable() || stopped_at_failure())) {
-      fit.fitted_fixed_exponents = model->spec_at(u.data());
-      auto polished =
-          std::make_unique<CandidateModel>(*fit.fitted_fixed_exponents, start_effects, campaign, noise, options);
-      polished->free_base_moduli(options.base_times, true);
-      std::vector<double> v = polished->start();
-      start = v;
-      summary = minimise(*polished, v, n_residuals, options.max_iterations, spare);
-      evaluations_first = model->evaluations();
-      model = std::move(polished);
-      u = std::move(v);
-    }
-    fit.converged = summary.IsSolutionUsable() || stopped_at_failure();
+    const bool stopped_at_failure = summary.termination_type == ceres::FAILURE && u != start;
+    fit.converged = summary.IsSolutionUsable() || stopped_at_failure;
     fit.message = summary.BriefReport();
     if (summary.termination_type == ceres::NO_CONVERGENCE)
       fit.warning = "did not converge within " + std::to_string(options.max_iterations) +
                     " iterations; ranked with the best parameters found (chi2/N may still fall: raise --max-iterations)";
-    if (stopped_at_failure())
+    if (stopped_at_failure)
       fit.warning = "Levenberg-Marquardt stopped where the model run fails close by (" + summary.message +
                     "); ranked with the best parameters evaluated";
-    const auto r = model->compare_at(u.data());
+    const auto r = model.compare_at(u.data());
     if (!r) throw std::runtime_error("the model run fails at the fitted parameters");
     fit.compare = *r;
     fit.chi2 = chi2_of(fit.compare, options.quasi_static_points);
     fit.bic = fit.chi2 + fit.parameters * std::log(static_cast<double>(n_residuals));
     fit.delta_bic = baseline_bic - fit.bic;
-    fit.effects = model->effects_at(u.data());
-    fit.fitted = model->spec_at(u.data());
+    fit.effects = model.effects_at(u.data());
+    fit.fitted = model.spec_at(u.data());
     if (!fit.converged) fit.message = "did not converge: " + fit.message;
   } catch (const std::exception& e) {
     fit.converged = false;
     fit.message = std::string("failed: ") + e.what();
     fit.delta_bic = -std::numeric_limits<double>::infinity();
   }
-  fit.evaluations = evaluations_first + model->evaluations();
+  fit.evaluations = model.evaluations();
   fit.seconds = seconds_since(t0);
   return fit;
+}
+
+/// The fitted spec of a candidate without the candidate's own effects: its (refitted) base.
+material::MaterialSpec base_of(const CandidateFit& f) {
+  material::MaterialSpec s = f.fitted;
+  std::erase_if(s.effects, [&](const material::EffectSpec& e) {
+    return std::find(f.kinds.begin(), f.kinds.end(), e.kind) != f.kinds.end();
+  });
+  return s;
+}
+
+/// `f` fitted once more from where it ended (its refitted base and effects, no start scan) with the base factors that
+/// `more` frees; the evaluations and seconds of both runs counted.
+CandidateFit refit_with_more_free(const CandidateFit& f, const Campaign& campaign, const std::vector<TestNoise>& noise,
+                                  std::size_t n_residuals, double baseline_bic, const DiagnoseOptions& more,
+                                  SpareCores* spare) {
+  CandidateFit g =
+      fit_candidate(base_of(f), f.effects, campaign, noise, n_residuals, baseline_bic, more, Scan::none, true, spare);
+  g.evaluations += f.evaluations;
+  g.seconds += f.seconds;
+  return g;
+}
+
+/// The base-refit reference (no effect, every base factor scanned). With base_exponents it is fitted twice: with the
+/// hyperfoam exponents fixed, then from there with them free; the joint candidates start from the first
+/// (CandidateFit::fitted_fixed_exponents) and fit the exponents with their effect in one run (docs/physics.md 9.8).
+CandidateFit fit_reference(const material::MaterialSpec& base, const Campaign& campaign,
+                           const std::vector<TestNoise>& noise, std::size_t n_residuals, double baseline_bic,
+                           const DiagnoseOptions& options, SpareCores* spare) {
+  DiagnoseOptions fixed = options;
+  fixed.base_exponents = false;
+  CandidateFit first =
+      fit_candidate(base, {}, campaign, noise, n_residuals, baseline_bic, fixed, Scan::all_in_turn, true, spare);
+  if (!options.base_exponents || !first.converged) return first;
+  CandidateFit f = refit_with_more_free(first, campaign, noise, n_residuals, baseline_bic, options, spare);
+  f.fitted_fixed_exponents = std::move(first.fitted);
+  return f;
 }
 
 }  // namespace
@@ -640,8 +661,8 @@ void confirm_protocol_with_base_refit(const material::MaterialSpec& baseline, co
                                              options.quasi_static_points).size();
   SpareCores spare;
   const std::vector<std::function<CandidateFit()>> jobs{
-      [&] { return fit_candidate(baseline, {}, campaign, noise, n, 0.0, options, Scan::all_in_turn, true, &spare); },
-      [&] { return fit_candidate(baseline, {}, p.campaign, noise, n, 0.0, options, Scan::all_in_turn, true, &spare); }};
+      [&] { return fit_reference(baseline, campaign, noise, n, 0.0, options, &spare); },
+      [&] { return fit_reference(baseline, p.campaign, noise, n, 0.0, options, &spare); }};
   std::vector<CandidateFit> refits = run_all(jobs, options.threads, {}, &spare);
   const double assumed = refits[0].converged ? refits[0].chi2 : std::numeric_limits<double>::infinity();
   const double found = refits[1].converged ? refits[1].chi2 : std::numeric_limits<double>::infinity();
@@ -771,21 +792,14 @@ struct CandidateJobs {
   /// joint_start()).
   std::function<CandidateFit()> job(std::vector<material::EffectSpec> effects, Scan scan, bool refit_base) const {
     return [this, effects = std::move(effects), scan, refit_base] {
-      const material::MaterialSpec& base = refit_base && !effects.empty() ? joint_start() : baseline;
+      if (refit_base && effects.empty())
+        return fit_reference(baseline, campaign, d.noise, d.residuals, d.baseline_bic, options, &spare);
+      const material::MaterialSpec& base = refit_base ? joint_start() : baseline;
       return fit_candidate(base, effects, campaign, d.noise, d.residuals, d.baseline_bic, options, scan, refit_base,
                            &spare);
     };
   }
 };
-
-/// The fitted spec of a candidate without the candidate's own effects: its (refitted) base.
-material::MaterialSpec base_of(const CandidateFit& f) {
-  material::MaterialSpec s = f.fitted;
-  std::erase_if(s.effects, [&](const material::EffectSpec& e) {
-    return std::find(f.kinds.begin(), f.kinds.end(), e.kind) != f.kinds.end();
-  });
-  return s;
-}
 
 /// Candidates: every single effect (with the base-refit factors under joint_base) and the reference, the
 /// base refitted WITHOUT any effect. An effect must beat the reference too, else the residual is as well
@@ -910,8 +924,7 @@ void polish_leading_singles(const CandidateJobs& c, std::vector<CandidateFit>& f
   for (std::size_t i : leaders) {
     expected_seconds.push_back(fits[i].seconds);
     jobs.push_back([&c, &f = fits[i], free_all] {
-      return fit_candidate(base_of(f), f.effects, c.campaign, c.d.noise, c.d.residuals, c.d.baseline_bic, free_all,
-                           Scan::none, true, &c.spare);
+      return refit_with_more_free(f, c.campaign, c.d.noise, c.d.residuals, c.d.baseline_bic, free_all, &c.spare);
     });
   }
   std::vector<CandidateFit> polished = run_all(jobs, o.threads, expected_seconds, &c.spare);
@@ -925,8 +938,6 @@ void polish_leading_singles(const CandidateJobs& c, std::vector<CandidateFit>& f
     p.polished = true;
     p.polish_added = p.parameters - f.parameters;
     p.delta_bic_unpolished = f.delta_bic;
-    p.evaluations += f.evaluations;
-    p.seconds += f.seconds;
     f = std::move(p);
   }
 }
