@@ -158,8 +158,9 @@ struct CandidateFit {
   bool base_refitted = false;              ///< the base moduli were fitted too
   /// Step 2b (DiagnoseOptions::polished_singles): refitted from its fit with the base's Prony times and hyperfoam
   /// exponents free too; `parameters`, chi2 and dBIC are the polished fit's. polish_added: the parameters the polish
-  /// added (for a pair started from a polished single: that single's, counted in `parameters`); delta_bic_unpolished: the dBIC before it, which decides whether the single is supported (the reference
-  /// has no polish).
+  /// added (for a pair started from a polished single: that single's, counted in `parameters`);
+  /// delta_bic_unpolished: the dBIC before it, which decides whether the single is supported (the reference has no
+  /// polish).
   bool polished = false;
   int polish_added = 0;
   double delta_bic_unpolished = 0.0;
