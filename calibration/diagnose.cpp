@@ -66,6 +66,18 @@ struct FreeParameter {
   double scale() const { return info->default_value != 0.0 ? std::abs(info->default_value) : 1.0; }
 };
 
+/// Whether diagnose fits parameter p of effect e here: not when p is fitted only without a branch that e has on (the
+/// branch's parameter given > 0, or not given and started > 0).
+bool fitted_here(const material::EffectInfo& info, const material::EffectParameterInfo& p,
+                 const material::EffectSpec& e) {
+  if (p.fitted_only_without.empty()) return true;
+  const auto given = e.parameters.find(p.fitted_only_without);
+  if (given != e.parameters.end()) return given->second == 0.0;
+  for (const auto& q : info.parameters)
+    if (q.name == p.fitted_only_without) return (q.fit_start > 0.0 ? q.fit_start : q.default_value) == 0.0;
+  return true;
+}
+
 /// The material with the candidate effects and the campaign comparison it gives.
 class CandidateModel {
  public:
@@ -84,11 +96,14 @@ class CandidateModel {
           effects_[e].parameters[p.name] = 0.0;  // a pair started from a single's fit may carry the single's value
           continue;
         }
-        if (!p.fit) {
+        if (!p.fit || !fitted_here(*info, p, effects_[e])) {
           if (p.diagnose_value && !effects_[e].parameters.count(p.name))
             effects_[e].parameters[p.name] = *p.diagnose_value;  // the form diagnose fits (pneumatic drag)
           continue;
         }
+        // a log-scale parameter given as 0 is a branch switched off (a second start, or a single fitted from one): held
+        const auto given = effects_[e].parameters.find(p.name);
+        if (p.log_scale && given != effects_[e].parameters.end() && given->second == 0.0) continue;
         FreeParameter f{e, BaseTarget::none, 0, &p};
         const double start = p.fit_start > 0.0 ? p.fit_start : p.default_value;
         if (p.log_scale) {
@@ -801,6 +816,39 @@ struct CandidateJobs {
   }
 };
 
+/// The starts of a single's fit: the catalogue's, and one more per parameter with a second_start (that parameter
+/// there, the others at their starts).
+std::vector<std::vector<material::EffectSpec>> single_starts(const std::vector<material::EffectSpec>& single) {
+  std::vector<std::vector<material::EffectSpec>> starts{single};
+  for (const auto& p : material::find_effect(single[0].kind)->parameters)
+    if (p.second_start) {
+      starts.push_back(single);
+      starts.back()[0].parameters[p.name] = *p.second_start;
+    }
+  return starts;
+}
+
+/// Each single's fit with the larger dBIC among its starts' fits (single_of[j]: the single fit j belongs to), with the
+/// model runs and seconds of all its starts.
+std::vector<CandidateFit> best_of_starts(std::vector<CandidateFit> all, const std::vector<std::size_t>& single_of,
+                                         std::size_t singles) {
+  std::vector<std::optional<CandidateFit>> best(singles);
+  for (std::size_t j = 0; j < all.size(); ++j) {
+    std::optional<CandidateFit>& b = best[single_of[j]];
+    if (!b) {
+      b = std::move(all[j]);
+      continue;
+    }
+    const int evaluations = b->evaluations + all[j].evaluations;
+    const double seconds = b->seconds + all[j].seconds;
+    if (all[j].delta_bic > b->delta_bic) b = std::move(all[j]);
+    b->evaluations = evaluations, b->seconds = seconds;
+  }
+  std::vector<CandidateFit> fits;
+  for (std::optional<CandidateFit>& b : best) fits.push_back(std::move(*b));
+  return fits;
+}
+
 /// Candidates: every single effect (with the base-refit factors under joint_base) and the reference, the
 /// base refitted WITHOUT any effect. An effect must beat the reference too, else the residual is as well
 /// explained by a base calibration that is slightly off. Under joint_base the reference is fitted first and every
@@ -817,14 +865,20 @@ std::vector<CandidateFit> fit_singles_and_reference(const CandidateJobs& c,
           std::move(run_all<CandidateFit>({c.job({}, Scan::all_in_turn, true)}, c.options.threads, {}, &c.spare)[0]);
     log_fit(log, *d.base_refit, false);
   }
-  for (const auto& s : singles) jobs.push_back(c.job(s, Scan::effect, joint));
+  std::vector<std::size_t> single_of;  // the single each job fits (a second start: the same single again)
+  for (std::size_t k = 0; k < singles.size(); ++k)
+    for (const auto& start : single_starts(singles[k])) {
+      jobs.push_back(c.job(start, Scan::effect, joint));
+      single_of.push_back(k);
+    }
   if (c.base_ref() && !joint) jobs.push_back(c.job({}, Scan::all_in_turn, true));
-  std::vector<CandidateFit> fits = run_all(jobs, c.options.threads, {}, &c.spare);
+  std::vector<CandidateFit> all = run_all(jobs, c.options.threads, {}, &c.spare);
   if (c.base_ref() && !joint) {
-    d.base_refit = std::move(fits.back());
-    fits.pop_back();
+    d.base_refit = std::move(all.back());
+    all.pop_back();
     log_fit(log, *d.base_refit, false);
   }
+  std::vector<CandidateFit> fits = best_of_starts(std::move(all), single_of, singles.size());
   for (const auto& f : fits) log_fit(log, f, true);
   return fits;
 }

@@ -44,20 +44,22 @@ const std::vector<Entry>& entries() {
         {{"drainage_length_mm", "R: lateral drainage path, half the specimen width (case-dependent)", 40.0, 0.0, 1e4,
           true, false, false},
          {"permeability_mm2", "K0: permeability at J = 1 (1e-3 mm^2 = 1e-9 m^2)", 1e-3, 1e-9, 1e3, false, true, true},
-         {"permeability_exponent", "n_K: K = K0 J^n_K, permeability falls with compression", 2.0, 0.0, 20.0, false,
-          true, false},
+         {"permeability_exponent",
+          "n_K: K = K0 J^n_K, permeability falls with compression (< 0: rising, an empirical stretch dependence of the "
+          "drag, whose nominal stress goes as l^-(n_K + 2) in a uniaxial test at nu = 0)",
+          2.0, -2.0, 20.0, false, true, false},
          {"air_viscosity_Pa_s", "eta_air: dynamic viscosity of air", 1.8e-5, 0.0, 1.0, true, false, false},
          {"air_modulus_kPa",
           "M: stiffness of the air trapped in the cells (isothermal air at 1 atm: about 100 kPa), in series with the "
           "flow: a Maxwell branch of time eta R^2/(8 K M); 0: no trapped-air spring (Darcy dashpot)",
-          0.0, 0.0, 1e9, false, true, true, 100.0, "permeability_mm2"},
+          0.0, 0.0, 1e9, false, true, true, 100.0, "permeability_mm2", std::nullopt, 0.0},
          {"air_modulus_exponent",
           "r: the trapped air stiffens as the cells shrink, M(J) = M J^-r: 0 constant, 1 isothermal ideal gas (Boyle)",
           0.0, 0.0, 5.0, false, false, false},
          {"rate_exponent",
           "q: flow law p = c(J) sign(v)|v|^q of the volumetric rate v [1/s]: 1 Darcy, < 1 resistance thinning with "
           "rate, > 1 inertial (Forchheimer-like) losses",
-          1.0, 0.1, 3.0, false, false, false},
+          1.0, 0.1, 3.0, false, true, false, 0.0, "", std::nullopt, std::nullopt, "air_modulus_kPa"},
          {"pressure_share",
           "s: share of the air's stress that is an isotropic pressure (a laterally free specimen inflates under it and "
           "the damping saturates); the rest, 1 - s, is a drag c(J) D along the rate of deformation (an axial dashpot "

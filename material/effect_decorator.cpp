@@ -10,17 +10,22 @@ Vec6 dJ_dE(const Mat3& F) {
   return to_voigt_stress(J * (F.transpose() * F).inverse());
 }
 
-Mat6 dCinv_dE(const Mat3& Ci) {
-  // Symmetrised derivative of C^{-1} with respect to C is -(Ci_ik Ci_jl + Ci_il Ci_jk)/2, and dC = 2 dE.
-  // Columns use the same (ij) <-> I pairing as the rows (minor symmetry makes engineering shear exact).
+Mat6 box_voigt(const Mat3& A, const Mat3& B) {
+  // Column K = (kl) is A X B for the X of a unit engineering strain: X_kl = X_lk = 1/2 (X_kk = 1 on the diagonal), so
+  // (A X B)_ij = (A_ik B_lj + A_il B_kj)/2. Rows and columns use the same (ij) <-> I pairing as material/tensor.hpp.
   static constexpr int pair[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}};
   Mat6 D;
   for (int I = 0; I < 6; ++I)
     for (int K = 0; K < 6; ++K) {
       const int i = pair[I][0], j = pair[I][1], k = pair[K][0], l = pair[K][1];
-      D(I, K) = -(Ci(i, k) * Ci(j, l) + Ci(i, l) * Ci(j, k));
+      D(I, K) = 0.5 * (A(i, k) * B(l, j) + A(i, l) * B(k, j));
     }
   return D;
+}
+
+Mat6 dCinv_dE(const Mat3& Ci) {
+  // dC^{-1} = -C^{-1} dC C^{-1} with dC = 2 dE.
+  return -2.0 * box_voigt(Ci, Ci);
 }
 
 Mat6 symmetric_identity_voigt() {

@@ -16,6 +16,10 @@ Vec6 dJ_dE(const Mat3& F);
 /// d(C^{-1})/dE as a 6x6 Voigt matrix: d(C^{-1})_ij / dE_kl = -(Ci_ik Ci_jl + Ci_il Ci_jk), Ci = C^{-1}.
 Mat6 dCinv_dE(const Mat3& C_inverse);
 
+/// The linear map X -> A X B on symmetric X as a 6x6 Voigt matrix (columns strain-like, engineering shear; rows
+/// stress-like): (A X B)_ij = sum_K box(A, B)(ij, K) X_K, box(A, B)(ij, kl) = (A_ik B_lj + A_il B_kj)/2.
+Mat6 box_voigt(const Mat3& A, const Mat3& B);
+
 /// The symmetric fourth-order identity (dE_ij / dE_kl) in Voigt: diag(1, 1, 1, 1/2, 1/2, 1/2).
 Mat6 symmetric_identity_voigt();
 

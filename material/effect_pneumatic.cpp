@@ -13,8 +13,8 @@ PneumaticEffect::PneumaticEffect(std::shared_ptr<const Material> inner, Pneumati
   auto positive = [](double x) { return x > 0.0 && std::isfinite(x); };
   if (!positive(p_.drainage_length)) throw std::invalid_argument("pneumatic: drainage length must be > 0");
   if (!positive(p_.permeability)) throw std::invalid_argument("pneumatic: permeability must be > 0");
-  if (!(p_.permeability_exponent >= 0.0) || !std::isfinite(p_.permeability_exponent))
-    throw std::invalid_argument("pneumatic: permeability exponent must be >= 0");
+  if (!(p_.permeability_exponent >= -2.0) || !std::isfinite(p_.permeability_exponent))
+    throw std::invalid_argument("pneumatic: permeability exponent must be >= -2");
   if (!positive(p_.air_viscosity)) throw std::invalid_argument("pneumatic: air viscosity must be > 0");
   if (!(p_.air_modulus > 0.0)) throw std::invalid_argument("pneumatic: air modulus must be > 0 (infinite: dashpot)");
   if (!(p_.air_modulus_exponent >= 0.0 && p_.air_modulus_exponent <= 5.0))
@@ -168,7 +168,7 @@ PneumaticEffect::Drag PneumaticEffect::power_law_drag(const Mat3& Ci, double J, 
     // dashpot: Y = c(J) h(r) Edot, Edot = dE/dt, r = |Edot|_C, h(r) = (r^2 + v_eps^2)^((q-1)/2); dh = kappa d(r^2)
     const Mat3 Ed = dE / dt, W = Ci * Ed * Ci, V = W * Ed * Ci;
     const double r2 = ddot(W, Ed), h = std::pow(r2 + eps2, 0.5 * (q - 1.0));
-    const double kappa = 0.5 * (q - 1.0) * std::pow(r2 + eps2, 0.5 * (q - 3.0));
+    const double kappa = 0.5 * (q - 1.0) * h / (r2 + eps2);  // (r^2 + v_eps^2)^((q-3)/2) from h, one pow fewer
     const double alpha = c * h / dt;
     return {c * h * Ed, alpha, -n * c * h * Ed, c * kappa * (2.0 * W / dt - 4.0 * V), Ed};
   }
@@ -205,13 +205,11 @@ void PneumaticEffect::add_drag(PointResponse& r, const Mat3& Ci, double J, const
   Eigen::Map<Vec6>(Y_new.data()) = to_voigt_stress(d.Y);
   const Mat3 CiYCi = Ci * d.Y * Ci;
   r.S += weight * to_voigt_stress(CiYCi);
-  // dS[X] = -2 C^-1 X C^-1 Y C^-1 - 2 C^-1 Y C^-1 X C^-1 + C^-1 dY[X] C^-1 (dC^-1 = -2 C^-1 X C^-1), column by column.
-  for (int k = 0; k < 6; ++k) {
-    const Mat3 X = from_voigt_strain(Vec6::Unit(k));
-    const Mat3 dY = d.alpha * X + ddot(Ci, X) * d.Z + ddot(d.T, X) * d.H;
-    const Mat3 dS = -2.0 * (Ci * X * CiYCi + CiYCi * X * Ci) + Ci * dY * Ci;
-    r.dS_dE.col(k) += weight * to_voigt_stress(dS);
-  }
+  // dS[X] = -2 C^-1 X C^-1 Y C^-1 - 2 C^-1 Y C^-1 X C^-1 + C^-1 dY[X] C^-1 (dC^-1 = -2 C^-1 X C^-1), with
+  // dY[X] = alpha X + (C^-1 : X) Z + (T : X) H (C^-1 and T symmetric: A : X is the stress-like Voigt A dotted with X).
+  r.dS_dE += weight * (d.alpha * box_voigt(Ci, Ci) - 2.0 * (box_voigt(Ci, CiYCi) + box_voigt(CiYCi, Ci)) +
+                       to_voigt_stress(Ci * d.Z * Ci) * to_voigt_stress(Ci).transpose() +
+                       to_voigt_stress(Ci * d.H * Ci) * to_voigt_stress(d.T).transpose());
 }
 
 PneumaticEffect::Pressure PneumaticEffect::power_law_pressure(double J, double J_old, double dt, double p_old) const {

@@ -6,8 +6,10 @@
 /// (Darcy + continuity, lateral escape). This effect adds that mean pressure at every point:
 ///   extra Kirchhoff pressure  p_air = -(eta_air R^2 / (8 K(J))) (dJ/dt) / J,
 ///   extra PK2 stress          S_air = -p_air C^{-1}       (Kirchhoff tau_air = -p_air I),
-///   permeability              K(J) = K0 J^{n_K}           (n_K >= 0: K falls with compression [A],
-///                                                          cf. Dawson, Germaine & Gibson, IJSS 44, 2007),
+///   permeability              K(J) = K0 J^{n_K}           (n_K > 0: K falls with compression [A],
+///                                                          cf. Dawson, Germaine & Gibson, IJSS 44, 2007;
+///                                                          n_K in [-2, 0): K rising, an empirical stretch
+///                                                          dependence of the lumped drag, docs/physics.md 5.1),
 /// with the backward-Euler rate dJ/dt = (J_new - J_old)/dt from F_old (dt = 0: no extra stress).
 /// Compression (dJ/dt < 0) gives p_air > 0, a compressive extra stress. Time scale of the effect
 /// tau_air ~ eta R^2 / (8 K M) (M: drained modulus): it grows as K falls and with R^2.
@@ -65,7 +67,7 @@ namespace cushion::material {
 struct PneumaticParameters {
   double drainage_length = 40.0;     ///< R [mm], > 0: half-width of the specimen (lateral drainage path)
   double permeability = 1e-3;        ///< K0 [mm^2] at J = 1, > 0 (1e-3 mm^2 = 1e-9 m^2)
-  double permeability_exponent = 2;  ///< n_K [-], >= 0: K = K0 J^{n_K}
+  double permeability_exponent = 2;  ///< n_K [-], >= -2: K = K0 J^{n_K}
   double air_viscosity = 1.8e-11;    ///< eta_air [MPa s] (1.8e-5 Pa s), > 0
   double air_modulus = std::numeric_limits<double>::infinity();  ///< M0 [MPa], > 0, at J = 1; infinite: Darcy dashpot
   double air_modulus_exponent = 0.0;  ///< r [-], in [0, 5]: M(J) = M0 J^-r (0: constant; 1: isothermal gas, Boyle)

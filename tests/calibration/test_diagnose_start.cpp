@@ -46,6 +46,14 @@
 // effect's form, stops it); polished, every test within 1.5x and c within 0.15. Scale-set c012, a_j (1 + K w_j e)
 // with its own weight per Prony term (not our form): without the polish friction is named first (chi2 1793 against
 // strain-dependent Prony's 4600, 2026-11-28 benchmark); polished, strain-dependent Prony first.
+//
+// The air flow's second start (catalogue second_start: its trapped-air modulus 0, a Darcy dashpot, beside the Maxwell
+// start at 100 kPa), where its rate exponent q is fitted too (catalogue fitted_only_without: held at 1 in the Maxwell
+// branch), with a permeability exponent n_K down to -2. Scale-set c037, a power-law dashpot s = c0 l^-m |e'|^q (q 0.71,
+// m 1.21) on a stiff 65 kg/m3 foam. From the Maxwell start alone (q and n_K free there too) the air flow stopped in a
+// soft-spring basin (M 0.46 kPa, dBIC 565) and stiffness damping was named (dBIC 2559, 2026-11-28); from the dashpot
+// start the air flow reaches dBIC 2749 with q 0.734 and n_K + 2 = 1.31 (the truth's m: our drag's nominal stress goes
+// as l^-(n_K + 2)).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -186,5 +194,22 @@ TEST(DiagnoseStart, LinearPerTermStrainDependentPronyIsRankedFirstOnceTheLeaders
   const nlohmann::json d =
       cushion::foreign_program::diagnose_raw(c.dir, "--candidates strain_dependent_prony,friction");
   ASSERT_EQ(d.at("winner").get<std::string>().rfind("strain_dependent_prony", 0), 0u) << d.at("verdict");
+  fs::remove_all(c.set);
+}
+
+TEST(DiagnoseStart, PowerLawAirDashpotIsNamedAirFlowFromItsDashpotStart) {
+  const BenchCampaign c = bench_campaign("diagnose_air_dashpot", "c037", "--base-refit scale");
+  ASSERT_EQ(c.truth.at("forms").at(0).get<std::string>(), "power_law_dashpot") << "the generator's mix changed";
+  const nlohmann::json& dashpot = c.truth.at("parameters").at("pneumatic");
+
+  const nlohmann::json d = cushion::foreign_program::diagnose_raw(c.dir, "--candidates pneumatic,stiffness_damping");
+  ASSERT_EQ(d.at("winner"), "pneumatic") << d.at("verdict");
+  for (const auto& t : d.at("candidates").at(0).at("compare").at("tests"))
+    EXPECT_LT(t.at("error_over_noise").get<double>(), 2.0) << t.at("name");
+  const nlohmann::json& air = d.at("fragment").at("effects").at(0);
+  ASSERT_EQ(air.at("kind"), "pneumatic");
+  EXPECT_NEAR(air.at("rate_exponent").get<double>(), dashpot.at("rate_exponent_q").get<double>(), 0.05);
+  // our drag's nominal stress goes as l^-(n_K + 2) at nu = 0 (docs/physics.md 5.1), the truth's as l^-m
+  EXPECT_NEAR(air.at("permeability_exponent").get<double>() + 2.0, dashpot.at("stretch_exponent_m").get<double>(), 0.3);
   fs::remove_all(c.set);
 }

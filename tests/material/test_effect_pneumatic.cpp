@@ -32,9 +32,14 @@ TEST(EffectPneumatic, TangentMatchesFiniteDifferences) {
   const PneumaticEffect on_foam(test::effect_test_foam(), strong_air());
   const PneumaticEffect on_visco(test::effect_test_visco(), strong_air());
   const PneumaticEffect maxwell(test::effect_test_foam(), trapped_air(2e-3));
+  PneumaticParameters rising = strong_air();
+  rising.permeability_exponent = -1.5;  // permeability rising with compression (diagnose's empirical range)
+  const PneumaticEffect on_foam_rising(test::effect_test_foam(), rising);
   for (int trial = 0; trial < 5; ++trial) {
     const Mat3 F_old = test::random_F(rng, 0.3), F_new = test::random_F(rng, 0.3);
     EXPECT_LT(test::increment_tangent_error(on_foam, F_old, F_new, 0.01, virgin(on_foam)), 1e-6) << "trial " << trial;
+    EXPECT_LT(test::increment_tangent_error(on_foam_rising, F_old, F_new, 0.01, virgin(on_foam_rising)), 1e-6)
+        << "n_K -1.5, trial " << trial;
     SCOPED_TRACE("Maxwell, trial " + std::to_string(trial));
     expect_exact_tangent_from_air_pressure(maxwell, F_old, F_new);
     std::vector<double> state(on_visco.state_size()), next(on_visco.state_size());
@@ -46,15 +51,20 @@ TEST(EffectPneumatic, TangentMatchesFiniteDifferences) {
 
 TEST(EffectPneumatic, ConstantVolumetricRateGivesTheDocumentedPressure) {
   // Confined compression J(t) = 1 - rate t (exactly constant dJ/dt): extra P11 = -p/J with
-  // p = eta R^2 rate / (8 K0 J^n J); checked along the ramp to J = 0.4, tolerance 1e-10 relative.
-  const PneumaticParameters p = strong_air();
-  const PneumaticEffect m(test::effect_test_foam(), p);
-  const double rate = 2.0, dt = 1e-3;
-  for (int k = 0; k < 300; k += 37) {
-    const double J_old = 1.0 - rate * dt * k, J_new = 1.0 - rate * dt * (k + 1);
-    const double K = p.permeability * std::pow(J_new, p.permeability_exponent);
-    const double pressure = p.air_viscosity * p.drainage_length * p.drainage_length * rate / (8.0 * K * J_new);
-    EXPECT_NEAR(extra_P11(m, J_old, J_new, dt), -pressure / J_new, 1e-10 * pressure / J_new) << "J = " << J_new;
+  // p = eta R^2 rate / (8 K0 J^n J); checked along the ramp to J = 0.4, tolerance 1e-10 relative. n = 2 (permeability
+  // falling with compression) and n = -1.5 (rising: the empirical range diagnose fits, docs/physics.md 5.1).
+  for (const double n : {2.0, -1.5}) {
+    PneumaticParameters p = strong_air();
+    p.permeability_exponent = n;
+    const PneumaticEffect m(test::effect_test_foam(), p);
+    const double rate = 2.0, dt = 1e-3;
+    for (int k = 0; k < 300; k += 37) {
+      const double J_old = 1.0 - rate * dt * k, J_new = 1.0 - rate * dt * (k + 1);
+      const double K = p.permeability * std::pow(J_new, p.permeability_exponent);
+      const double pressure = p.air_viscosity * p.drainage_length * p.drainage_length * rate / (8.0 * K * J_new);
+      EXPECT_NEAR(extra_P11(m, J_old, J_new, dt), -pressure / J_new, 1e-10 * pressure / J_new)
+          << "n = " << n << ", J = " << J_new;
+    }
   }
 }
 
