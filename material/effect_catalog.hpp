@@ -54,12 +54,12 @@ struct EffectParameterInfo {
   /// A second start of diagnose's single fit (none: one start) in a regime of the effect that the start scan from
   /// fit_start does not reach: the single is fitted from both starts and the larger dBIC kept. 0 for a log-scale
   /// parameter whose 0 switches a branch off: held off in that fit (the air flow's trapped-air modulus: a Maxwell
-  /// branch from 100 kPa, and 0, a Darcy dashpot with one parameter fewer; docs/physics.md 9.8).
+  /// branch from 100 kPa, and 0, a Darcy dashpot with one parameter fewer; docs/physics.md 9.9).
   std::optional<double> second_start{};
   /// Another log-scale parameter of the same effect whose 0 switches a branch off: diagnose fits this one only in a fit
   /// where that branch is off, and holds it at its default otherwise (empty: always fitted; the air flow's rate exponent
   /// is fitted for the dashpot, trapped-air modulus 0, and held at 1, Darcy, in the Maxwell branch: free there it took
-  /// a foreign Maxwell branch to q 3 and n_K -2; docs/physics.md 9.8).
+  /// a foreign Maxwell branch to q 3 and n_K -2; docs/physics.md 9.9).
   std::string fitted_only_without{};
 };
 
