@@ -66,6 +66,11 @@ struct FreeParameter {
   double scale() const { return info->default_value != 0.0 ? std::abs(info->default_value) : 1.0; }
 };
 
+/// Where diagnose's fit of parameter p starts [file unit]: its fit_start, else its default.
+double fit_start_of(const material::EffectParameterInfo& p) {
+  return p.fit_start > 0.0 ? p.fit_start : p.default_value;
+}
+
 /// Whether diagnose fits parameter p of effect e here: not when p is fitted only without a branch that e has on (the
 /// branch's parameter given > 0, or not given and started > 0).
 bool fitted_here(const material::EffectInfo& info, const material::EffectParameterInfo& p,
@@ -74,7 +79,7 @@ bool fitted_here(const material::EffectInfo& info, const material::EffectParamet
   const auto given = e.parameters.find(p.fitted_only_without);
   if (given != e.parameters.end()) return given->second == 0.0;
   for (const auto& q : info.parameters)
-    if (q.name == p.fitted_only_without) return (q.fit_start > 0.0 ? q.fit_start : q.default_value) == 0.0;
+    if (q.name == p.fitted_only_without) return fit_start_of(q) == 0.0;
   return true;
 }
 
@@ -105,7 +110,7 @@ class CandidateModel {
         const auto given = effects_[e].parameters.find(p.name);
         if (p.log_scale && given != effects_[e].parameters.end() && given->second == 0.0) continue;
         FreeParameter f{e, BaseTarget::none, 0, &p};
-        const double start = p.fit_start > 0.0 ? p.fit_start : p.default_value;
+        const double start = fit_start_of(p);
         if (p.log_scale) {
           const double lo = std::max(p.min_exclusive ? p.min * (1 + 1e-12) + 1e-300 : p.min, start * 1e-4);
           f.lower = std::log10(std::max(lo, 1e-300));
