@@ -106,11 +106,13 @@ class CandidateModel {
             effects_[e].parameters[p.name] = *p.diagnose_value;  // the form diagnose fits (pneumatic drag)
           continue;
         }
-        // a log-scale parameter given as 0 is a branch switched off (a second start, or a single fitted from one): held
+        // a log-scale parameter at 0 is a branch switched off: held there, where given as 0 (a second start, or a single
+        // fitted from one) or started at 0 when not given (mullins strain_scale: the energy form unless a start sets it)
         const auto given = effects_[e].parameters.find(p.name);
-        if (p.log_scale && given != effects_[e].parameters.end() && given->second == 0.0) continue;
+        if (p.log_scale && (given != effects_[e].parameters.end() ? given->second : fit_start_of(p)) == 0.0) continue;
         FreeParameter f{e, BaseTarget::none, 0, &p};
-        const double start = fit_start_of(p);
+        // the log range is centred on the catalogue's start, or on the given value where that start is 0 (branch off)
+        const double start = p.log_scale && fit_start_of(p) == 0.0 ? given->second : fit_start_of(p);
         if (p.log_scale) {
           const double lo = std::max(p.min_exclusive ? p.min * (1 + 1e-12) + 1e-300 : p.min, start * 1e-4);
           f.lower = std::log10(std::max(lo, 1e-300));

@@ -92,14 +92,19 @@ const std::vector<Entry>& entries() {
        }},
       {{"mullins",
         "Ogden-Roxburgh softening S = eta S_inner, eta = 1 - erf((W_max - W)/(m + beta W_max))/r below the largest "
-        "energy reached",
+        "energy reached (or the largest Biot strain norm, with a strain_scale)",
         {{"r", "r: maximum softening 1/r", 2.0, 1.0, 1e3, true, true, true},
-         {"m_kPa", "m: energy scale of the softening (kPa = kJ/m^3)", 1.0, 0.0, 1e4, true, true, true},
+         {"m_kPa", "m: energy scale of the softening (kPa = kJ/m^3); unused with a strain_scale", 1.0, 0.0, 1e4, true,
+          true, true, 0.0, "", std::nullopt, std::nullopt, "strain_scale"},
          {"beta", "beta: growth of the energy scale with W_max", 0.1, 0.0, 10.0, false, false, false},
          {"relaxation_share",
           "w: share of the softening eta^w applied to the long-term stress that drives the Prony memory (the rest, "
           "eta^(1-w), scales the whole stress); 0: eta S_inner; > 0 only as the first effect on a Prony material",
-          0.0, 0.0, 1.0, false, true, false, 0.5}},
+          0.0, 0.0, 1.0, false, true, false, 0.5},
+         {"strain_scale",
+          "m_e: 0, the energy drives the softening (Ogden-Roxburgh); > 0, the Biot strain norm ||U - I|| does, with "
+          "this scale in place of m (strain-based damage)",
+          0.0, 0.0, 10.0, false, true, true, 0.0, "", std::nullopt, 0.3}},
         false,
         true,
         "relaxation_share"},
@@ -109,6 +114,7 @@ const std::vector<Entry>& entries() {
          p.m = c.value.at("m_kPa") * kPa;
          p.beta = c.value.at("beta");
          p.relaxation_share = c.value.at("relaxation_share");
+         p.strain_scale = c.value.at("strain_scale");
          return std::make_shared<MullinsEffect>(c.inner, c.reference_base, p);
        }},
       {{"strain_dependent_prony",

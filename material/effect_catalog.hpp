@@ -54,7 +54,9 @@ struct EffectParameterInfo {
   /// A second start of diagnose's single fit (none: one start) in a regime of the effect that the start scan from
   /// fit_start does not reach: the single is fitted from both starts and the larger dBIC kept. 0 for a log-scale
   /// parameter whose 0 switches a branch off: held off in that fit (the air flow's trapped-air modulus: a Maxwell
-  /// branch from 100 kPa, and 0, a Darcy dashpot with one parameter fewer; docs/physics.md 9.9).
+  /// branch from 100 kPa, and 0, a Darcy dashpot with one parameter fewer; docs/physics.md 9.9). > 0 for one whose
+  /// start 0 holds a branch off: switched on and fitted from there (mullins strain_scale 0.3: the strain driver,
+  /// docs/physics.md 9.10).
   std::optional<double> second_start{};
   /// Another log-scale parameter of the same effect whose 0 switches a branch off: diagnose fits this one only in a fit
   /// where that branch is off, and holds it at its default otherwise (empty: always fitted; the air flow's rate exponent

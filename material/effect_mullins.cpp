@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "material/principal_stretch.hpp"
+
 namespace cushion::material {
 
 MullinsEffect::MullinsEffect(std::shared_ptr<const Material> inner, std::shared_ptr<const Hyperelastic> energy_base,
@@ -22,10 +24,25 @@ MullinsEffect::MullinsEffect(std::shared_ptr<const Material> inner, std::shared_
   if (!(p_.r > 1.0) || !std::isfinite(p_.r)) throw std::invalid_argument("mullins: r must be > 1");
   if (!(p_.m > 0.0) || !std::isfinite(p_.m)) throw std::invalid_argument("mullins: m must be > 0");
   if (!(p_.beta >= 0.0) || !std::isfinite(p_.beta)) throw std::invalid_argument("mullins: beta must be >= 0");
+  if (!(p_.strain_scale >= 0.0) || !std::isfinite(p_.strain_scale))
+    throw std::invalid_argument("mullins: strain_scale must be >= 0");
 }
 
-double MullinsEffect::eta(double W, double W_max) const {
-  return 1.0 - std::erf((W_max - W) / (p_.m + p_.beta * W_max)) / p_.r;
+double MullinsEffect::scale(double D_max) const {
+  return (p_.strain_scale > 0.0 ? p_.strain_scale : p_.m) + p_.beta * D_max;
+}
+
+double MullinsEffect::eta(double D, double D_max) const { return 1.0 - std::erf((D_max - D) / scale(D_max)) / p_.r; }
+
+MullinsEffect::Driver MullinsEffect::driver(const Mat3& F, const ElasticEval& e) const {
+  if (p_.strain_scale == 0.0) return {e.W, e.S};
+  // D^2 = tr((U - I)^2) = tr C - 2 tr U + 3, d tr U/dC = U^-1 / 2: dD/dE = (I - U^-1) / D.
+  const principal::Stretches st = principal::decompose(F);  // e valid (the base evaluated F): st has no failure
+  const Vec3 l = st.s.array().exp();
+  const double D = (l.array() - 1.0).matrix().norm();
+  if (D == 0.0) return {0.0, Vec6::Zero()};
+  const Mat3 U_inv = st.N * l.cwiseInverse().asDiagonal() * st.N.transpose();
+  return {D, to_voigt_stress((Mat3::Identity() - U_inv) / D)};
 }
 
 PointResponse MullinsEffect::integrate(const Mat3& F_old, const Mat3& F_new, double dt,
@@ -35,21 +52,22 @@ PointResponse MullinsEffect::integrate(const Mat3& F_old, const Mat3& F_new, dou
   const ElasticEval e = energy_base_->evaluate(F_new);
   combine_status(r, e.status, e.message);
   if (r.status == Status::failed) return r;
-  const double W_max_old = own(state_old)[0];
-  if (e.W >= W_max_old) {  // first loading: eta = 1 identically, W_max follows W
-    own(state_new)[0] = e.W;
+  const double D_max_old = own(state_old)[0];
+  const Driver d = driver(F_new, e);
+  if (d.D >= D_max_old) {  // first loading: eta = 1 identically, D_max follows D
+    own(state_new)[0] = d.D;
     return r;
   }
-  own(state_new)[0] = W_max_old;
-  const double scale = p_.m + p_.beta * W_max_old, z = (W_max_old - e.W) / scale;
+  own(state_new)[0] = D_max_old;
+  const double scale_value = scale(D_max_old), z = (D_max_old - d.D) / scale_value;
   const double eta_value = 1.0 - std::erf(z) / p_.r;
-  // d eta / dW = (2 / (r sqrt(pi) scale)) e^{-z^2}, dW/dE = S_base.
-  const double deta_dW = 2.0 * std::exp(-z * z) / (p_.r * std::sqrt(std::numbers::pi) * scale);
-  if (memory_) drive_memory_with_softened_stress(r, e, eta_value, deta_dW * e.S, dt, state_new);
+  // d eta / dE = (2 / (r sqrt(pi) scale)) e^{-z^2} dD/dE (energy: dW/dE = S_base).
+  const Vec6 deta_dE = 2.0 * std::exp(-z * z) / (p_.r * std::sqrt(std::numbers::pi) * scale_value) * d.dD_dE;
+  if (memory_) drive_memory_with_softened_stress(r, e, eta_value, deta_dE, dt, state_new);
   // The softening left outside the memory: eta^(1-w) (w = 0: eta, the same operations as without a share).
   const double w = p_.relaxation_share, outer = w == 0.0 ? eta_value : std::pow(eta_value, 1.0 - w);
   const double douter_deta = w == 0.0 ? 1.0 : (1.0 - w) * std::pow(eta_value, -w);
-  r.dS_dE = outer * r.dS_dE + (douter_deta * deta_dW) * r.S * e.S.transpose();
+  r.dS_dE = outer * r.dS_dE + douter_deta * r.S * deta_dE.transpose();
   r.S *= outer;
   return r;
 }
@@ -68,14 +86,15 @@ void MullinsEffect::drive_memory_with_softened_stress(PointResponse& r, const El
 }
 
 Vec6 MullinsEffect::viscous_stress(const Mat3& F, std::span<const double> state) const {
-  const double eta_value = eta(energy_base_->evaluate(F).W, own(state)[0]);
+  const double eta_value = eta(driver(F, energy_base_->evaluate(F)).D, own(state)[0]);
   return std::pow(eta_value, 1.0 - p_.relaxation_share) * EffectDecorator::viscous_stress(F, state);
 }
 
 Mat6c MullinsEffect::complex_tangent(const Mat3& F_base, double omega) const {
   const ElasticEval e = energy_base_->evaluate(F_base);
-  const double deta_dW = 2.0 / (p_.r * std::sqrt(std::numbers::pi) * (p_.m + p_.beta * e.W));
-  const Mat6 softening = deta_dW * e.S * e.S.transpose();
+  const Driver d = driver(F_base, e);
+  const double deta_dD = 2.0 / (p_.r * std::sqrt(std::numbers::pi) * scale(d.D));
+  const Mat6 softening = deta_dD * e.S * d.dD_dE.transpose();
   const double w = p_.relaxation_share;
   const std::complex<double> share = memory_ ? w * prony_complex_factor(memory_->terms(), omega) + (1.0 - w) : 1.0;
   return inner_->complex_tangent(F_base, omega) + share * softening.cast<std::complex<double>>();
@@ -83,7 +102,12 @@ Mat6c MullinsEffect::complex_tangent(const Mat3& F_base, double omega) const {
 
 std::string MullinsEffect::describe() const {
   std::ostringstream o;
-  o << "Mullins softening (r = " << p_.r << ", m = " << p_.m * 1e3 << " kPa, beta = " << p_.beta;
+  o << "Mullins softening (r = " << p_.r;
+  if (p_.strain_scale > 0.0)
+    o << ", driven by the Biot strain norm, m_e = " << p_.strain_scale;
+  else
+    o << ", m = " << p_.m * 1e3 << " kPa";
+  o << ", beta = " << p_.beta;
   if (p_.relaxation_share > 0.0) o << ", relaxation share " << p_.relaxation_share;
   o << ") over " << inner_->describe();
   return o.str();

@@ -9,10 +9,20 @@
 /// W_max): the effect dissipates only when W_max grows. Tangent (unsymmetric):
 ///   dS/dE = eta C_inner + S_inner (x) deta/dE,  deta/dE = (2 / (r sqrt(pi) (m + beta W_max))) e^{-z^2} S_base,
 /// z = (W_max - W)/(m + beta W_max), S_base = dW/dE; deta/dE = 0 while loading (W >= W_max^n).
+/// Strain driver (strain_scale m_e > 0, docs/physics.md 5.2): the softening is driven by the Biot strain norm of F
+/// instead of the energy, D = ||U - I|| = sqrt(sum (l_a - 1)^2) [-] (the nominal strain e = 1 - l of a uniaxial
+/// compression with fixed lateral stretches), with
+///   eta = 1 - (1/r) erf((D_max - D) / (m_e + beta D_max)),  dD/dE = (I - U^-1) / D  (PK2 frame, D > 0),
+/// in place of W, W_max, m and S_base = dW/dE in every formula of this header (the state stores D_max); m is unused.
+/// The energy form softens by how far the energy fell below its maximum, which in a foam's densification drops fast;
+/// the strain form by how far the strain fell, the softening shape of strain-based damage models (Qi-Boyce-like,
+/// exponential damage in the largest strain) that the energy form follows only to about 0.05-0.1 in eta
+/// (tools/mullins_shapes.py).
 /// complex_tangent: NOT a linear effect. It returns the tangent of the preconditioned (shaken-down)
 /// state at W_max = W(F_base) approached from below, i.e. the reversible tangent that a small
 /// vibration about a held preload sees after its first cycle:
-///   C* = C*_inner + (2 / (r sqrt(pi) (m + beta W_b))) S_base (x) S_base   (real: no loss),
+///   C* = C*_inner + (2 / (r sqrt(pi) (m + beta W_b))) S_base (x) S_base   (real: no loss; strain driver:
+///   C* = C*_inner + (2 / (r sqrt(pi) (m_e + beta D_b))) S_base (x) dD/dE, unsymmetric),
 /// with S_inner at the relaxed base taken as the base stress S_base (exact when the inner model
 /// relaxes to the base: hyperelastic or viscoelastic inner).
 ///
@@ -39,6 +49,7 @@ struct MullinsParameters {
   double m = 1e-3;    ///< m [MPa], > 0: energy scale of the softening
   double beta = 0.1;  ///< beta [-], >= 0: growth of the energy scale with W_max
   double relaxation_share = 0.0;  ///< w [-] in [0, 1]: share of the softening that drives the Prony memory
+  double strain_scale = 0.0;      ///< m_e [-], >= 0: 0 drives the softening by the energy; > 0 by the Biot strain norm
 };
 
 class MullinsEffect final : public EffectDecorator {
@@ -56,13 +67,21 @@ class MullinsEffect final : public EffectDecorator {
   Vec6 viscous_stress(const Mat3& F, std::span<const double> state) const override;
   std::string describe() const override;
 
-  /// Softening factor eta [-] at base energy W with maximum W_max [MPa].
-  double eta(double W, double W_max) const;
+  /// Softening factor eta [-] at driver D with maximum D_max: the base energy W [MPa] or the Biot strain norm [-].
+  double eta(double D, double D_max) const;
+  /// The driver D at F (e: the energy base at F) and its gradient dD/dE [Voigt, stress-like: dD = dD_dE . dE_voigt].
+  struct Driver {
+    double D = 0.0;
+    Vec6 dD_dE = Vec6::Zero();
+  };
+  Driver driver(const Mat3& F, const ElasticEval& e) const;
   const MullinsParameters& parameters() const { return p_; }
 
  private:
   /// w > 0: stores zeta S_e in the Viscoelastic's state, adds q_i (zeta - 1) S_e to each H_i, and turns r from
   /// S_inner into S_visco with its tangent (formulas above).
+  /// The scale of the erf's argument: m (energy) or m_e (strain) plus beta D_max.
+  double scale(double D_max) const;
   void drive_memory_with_softened_stress(PointResponse& r, const ElasticEval& e, double eta_value, const Vec6& deta_dE,
                                          double dt, std::span<double> state_new) const;
 

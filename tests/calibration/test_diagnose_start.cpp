@@ -54,6 +54,14 @@
 // soft-spring basin (M 0.46 kPa, dBIC 565) and stiffness damping was named (dBIC 2559, 2026-11-28); from the dashpot
 // start the air flow reaches dBIC 2749 with q 0.734 and n_K + 2 = 1.31 (the truth's m: our drag's nominal stress goes
 // as l^-(n_K + 2)).
+//
+// Mullins' second start (catalogue second_start: strain_scale 0.3, the softening driven by the Biot strain norm instead
+// of the energy, docs/physics.md 5.2 and 9.10). Scale-set c035, exponential damage s = [1 - d_inf (1 - exp(-e_max/e_d))]
+// s_e (d_inf 0.15, e_d 0.29) on a random foam: from the energy start alone Mullins was switched off (r at its bound
+// 1000, dBIC -56) and friction was named (2026-11-28); from the strain start Mullins reaches dBIC 227, chi2/N 1.01, every
+// test within 1.83x noise. Scale-set c052, Qi-Boyce-like s = s_e [1 - a tanh(e_max/e_s)(1 - (e/e_max)^p)] (a 0.42,
+// e_s 0.19, p 2.13) on a soft 50 kg/m3 foam: the energy start's Mullins (dBIC 2.595e4) was below friction's (2.855e4)
+// and friction + Mullins was named; from the strain start Mullins leads (3.128e4) and Mullins + friction is named.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -211,5 +219,27 @@ TEST(DiagnoseStart, PowerLawAirDashpotIsNamedAirFlowFromItsDashpotStart) {
   EXPECT_NEAR(air.at("rate_exponent").get<double>(), dashpot.at("rate_exponent_q").get<double>(), 0.05);
   // our drag's nominal stress goes as l^-(n_K + 2) at nu = 0 (docs/physics.md 5.1), the truth's as l^-m
   EXPECT_NEAR(air.at("permeability_exponent").get<double>() + 2.0, dashpot.at("stretch_exponent_m").get<double>(), 0.3);
+  fs::remove_all(c.set);
+}
+
+TEST(DiagnoseStart, ExponentialDamageIsNamedMullinsFromItsStrainStart) {
+  const BenchCampaign c = bench_campaign("diagnose_mullins_strain", "c035", "--base-refit scale");
+  ASSERT_EQ(c.truth.at("forms").at(0).get<std::string>(), "exponential_damage") << "the generator's mix changed";
+
+  const nlohmann::json d = cushion::foreign_program::diagnose_raw(c.dir, "");
+  ASSERT_EQ(d.at("winner"), "mullins") << d.at("verdict");
+  for (const auto& t : d.at("candidates").at(0).at("compare").at("tests"))
+    EXPECT_LT(t.at("error_over_noise").get<double>(), 2.0) << t.at("name");
+  EXPECT_GT(d.at("fragment").at("effects").at(0).at("strain_scale").get<double>(), 0.0);
+  fs::remove_all(c.set);
+}
+
+TEST(DiagnoseStart, QiBoyceLikeSofteningIsNamedMullinsFirstFromItsStrainStart) {
+  const BenchCampaign c = bench_campaign("diagnose_mullins_qi_boyce", "c052", "--base-refit scale");
+  ASSERT_EQ(c.truth.at("forms").at(0).get<std::string>(), "qi_boyce_like") << "the generator's mix changed";
+
+  const nlohmann::json d = cushion::foreign_program::diagnose_raw(c.dir, "");
+  ASSERT_EQ(d.at("winner").get<std::string>().rfind("mullins", 0), 0u) << d.at("verdict");
+  EXPECT_GT(d.at("fragment").at("effects").at(0).at("strain_scale").get<double>(), 0.0);
   fs::remove_all(c.set);
 }

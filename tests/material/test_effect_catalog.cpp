@@ -46,8 +46,9 @@ TEST(EffectCatalog, EveryEntryIsSelfDescribing) {
     for (const EffectParameterInfo& p : e.parameters) {
       EXPECT_TRUE(p.min_exclusive ? p.default_value > p.min : p.default_value >= p.min) << p.name;
       EXPECT_LE(p.default_value, p.max) << p.name;
-      if (p.log_scale) {  // positive, or 0 switches a branch off and the fit starts at a positive fit_start
-        EXPECT_TRUE(p.min > 0.0 || p.min_exclusive || p.fit_start > 0.0) << p.name;
+      if (p.log_scale) {  // positive, or 0 switches a branch off and a fit starts at a positive fit_start or second_start
+        EXPECT_TRUE(p.min > 0.0 || p.min_exclusive || p.fit_start > 0.0 || p.second_start.value_or(0.0) > 0.0)
+            << p.name;
       }
       if (p.fit_start > 0.0) {
         EXPECT_GT(p.fit_start, p.min) << p.name;

@@ -1,10 +1,13 @@
 // Requirement: the Mullins (Ogden-Roxburgh) effect leaves first loading unchanged, softens unloading
 // by the closed-form eta, reloading retraces unloading below W_max and rejoins the base curve above it;
 // its increment tangent is exact and its complex tangent is the reversible tangent at W_max. With a relaxation share
-// w over a Prony material the memory is driven by eta^w S_e (checked against the test's own recursion).
+// w over a Prony material the memory is driven by eta^w S_e (checked against the test's own recursion). The same with
+// the strain driver (strain_scale m_e > 0): the Biot strain norm D = ||U - I|| in place of W (here evaluated from the
+// eigenvalues of F^T F, not from the effect's principal decomposition; 1 - l on the confined path).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <numbers>
 
 #include "material/effect_mullins.hpp"
@@ -14,8 +17,25 @@ namespace cushion::material {
 namespace {
 
 const MullinsParameters kParameters{2.0, 2e-4, 0.2};
+const MullinsParameters kStrainParameters{2.0, 2e-4, 0.2, 0.0, 0.05};  // m unused
 
 Mat3 confined(double l) { return Vec3(l, 1.0, 1.0).asDiagonal(); }
+
+/// ||U - I|| from the eigenvalues of C = F^T F.
+double biot_norm(const Mat3& F) {
+  const Vec3 l = Eigen::SelfAdjointEigenSolver<Mat3>(F.transpose() * F).eigenvalues().cwiseSqrt();
+  return (l.array() - 1.0).matrix().norm();
+}
+
+/// The driver of parameters p at F over the energy base `foam`: W or the Biot strain norm.
+double driver(const MullinsParameters& p, const Hyperelastic& foam, const Mat3& F) {
+  return p.strain_scale > 0.0 ? biot_norm(F) : foam.evaluate(F).W;
+}
+
+/// A maximum of the driver safely above its value at F (the softening active, eta < 1).
+double maximum_above(const MullinsParameters& p, const Hyperelastic& foam, const Mat3& F) {
+  return 1.3 * driver(p, foam, F) + (p.strain_scale > 0.0 ? p.strain_scale : p.m);
+}
 
 /// S11 along the stretches l[k] (laterally confined), from the virgin state with dt = 0.1 s.
 std::vector<double> drive(const Material& m, const std::vector<double>& l) {
@@ -41,13 +61,15 @@ std::vector<double> path() {
   return l;
 }
 
-TEST(EffectMullins, LoadingUnloadingReloading) {
+/// Along path(): the base curve on first loading and beyond the previous maximum, eta(D) S_base below it from the
+/// closed form with the driver D(l), reloading retracing unloading; 1e-10 relative.
+void check_loading_unloading_reloading(const MullinsParameters& p, const std::function<double(double)>& D_of_l) {
   const auto foam = test::effect_test_foam();
-  const MullinsEffect m(foam, foam, kParameters);
+  const MullinsEffect m(foam, foam, p);
   const std::vector<double> l = path(), S = drive(m, l), S_base = drive(*foam, l);
-  const double W_max = foam->evaluate(confined(0.6)).W;
+  const double D_max = D_of_l(0.6), scale = (p.strain_scale > 0.0 ? p.strain_scale : p.m) + p.beta * D_max;
   for (std::size_t k = 0; k < l.size(); ++k) {
-    const double W = foam->evaluate(confined(l[k])).W;
+    const double D = D_of_l(l[k]);
     if (k < 40 || k > 99) {
       // First loading and loading beyond the previous maximum: the base curve (eta = 1), exact to 1e-10.
       EXPECT_NEAR(S[k], S_base[k], 1e-10 * std::abs(S_base[k])) << "l = " << l[k];
@@ -55,13 +77,13 @@ TEST(EffectMullins, LoadingUnloadingReloading) {
     }
     // Unloading/reloading: eta from the closed form (independent erf evaluation), 1e-10 relative;
     // the stress is strictly below the loading stress in magnitude.
-    const double eta = 1.0 - std::erf((W_max - W) / (kParameters.m + kParameters.beta * W_max)) / kParameters.r;
+    const double eta = 1.0 - std::erf((D_max - D) / scale) / p.r;
     EXPECT_NEAR(S[k], eta * S_base[k], 1e-10 * std::abs(S_base[k])) << "l = " << l[k];
-    if (W < W_max * (1.0 - 1e-9)) {
+    if (D < D_max * (1.0 - 1e-9)) {
       EXPECT_LT(std::abs(S[k]), std::abs(S_base[k]) * (1.0 - 1e-6)) << "l = " << l[k];
     }
   }
-  // Reload retraces the unloading curve below W_max: same stretch, same stress, 1e-10 relative.
+  // Reload retraces the unloading curve below the maximum: same stretch, same stress, 1e-10 relative.
   for (std::size_t k = 40; k < 69; ++k) {
     const std::size_t k_reload = 138 - k;  // l[k_reload] == l[k] (0.61 .. 0.89)
     ASSERT_DOUBLE_EQ(l[k_reload], l[k]);
@@ -71,40 +93,53 @@ TEST(EffectMullins, LoadingUnloadingReloading) {
   EXPECT_LT(std::abs(S[69]), 0.9 * std::abs(S_base[69]));
 }
 
+TEST(EffectMullins, LoadingUnloadingReloading) {
+  const auto foam = test::effect_test_foam();
+  check_loading_unloading_reloading(kParameters, [&](double l) { return foam->evaluate(confined(l)).W; });
+}
+
+TEST(EffectMullins, StrainDriverSoftensByTheStrainBelowItsMaximum) {
+  // On the confined path the Biot strain norm is the nominal strain 1 - l.
+  check_loading_unloading_reloading(kStrainParameters, [](double l) { return 1.0 - l; });
+}
+
 TEST(EffectMullins, TangentMatchesFiniteDifferences) {
-  // Random F below a previous maximum (W_max = 1.3 W + m), on the loading branch (W_max = 0), over
-  // hyperfoam and over the viscoelastic model with a non-trivial state. Tolerance 1e-6 relative.
+  // Random F below a previous maximum (1.3 D + m), on the loading branch (maximum 0), over hyperfoam and over the
+  // viscoelastic model with a non-trivial state, energy and strain drivers. Tolerance 1e-6 relative.
   std::mt19937 rng(17);
   const auto foam = test::effect_test_foam();
   const auto visco = test::effect_test_visco();
-  const MullinsEffect on_foam(foam, foam, kParameters);
-  const MullinsEffect on_visco(visco, foam, kParameters);
-  for (int trial = 0; trial < 4; ++trial) {
-    const Mat3 F_old = test::random_F(rng, 0.25), F = test::random_F(rng, 0.25);
-    const double W = foam->evaluate(F).W;
-    for (double W_max : {1.3 * W + kParameters.m, 0.0}) {
-      EXPECT_LT(test::increment_tangent_error(on_foam, F_old, F, 0.05, {W_max}), 1e-6) << "trial " << trial;
-      std::vector<double> state(on_visco.state_size()), next(on_visco.state_size());
-      on_visco.initial_state(state);
-      on_visco.integrate(Mat3::Identity(), F_old, 0.05, state, next);
-      next.back() = W_max;
-      EXPECT_LT(test::increment_tangent_error(on_visco, F_old, F, 0.05, next), 1e-6) << "trial " << trial;
+  for (const MullinsParameters& p : {kParameters, kStrainParameters}) {
+    const MullinsEffect on_foam(foam, foam, p);
+    const MullinsEffect on_visco(visco, foam, p);
+    for (int trial = 0; trial < 4; ++trial) {
+      const Mat3 F_old = test::random_F(rng, 0.25), F = test::random_F(rng, 0.25);
+      for (double D_max : {maximum_above(p, *foam, F), 0.0}) {
+        EXPECT_LT(test::increment_tangent_error(on_foam, F_old, F, 0.05, {D_max}), 1e-6) << "trial " << trial;
+        std::vector<double> state(on_visco.state_size()), next(on_visco.state_size());
+        on_visco.initial_state(state);
+        on_visco.integrate(Mat3::Identity(), F_old, 0.05, state, next);
+        next.back() = D_max;
+        EXPECT_LT(test::increment_tangent_error(on_visco, F_old, F, 0.05, next), 1e-6) << "trial " << trial;
+      }
     }
   }
 }
 
-TEST(EffectMullins, ComplexTangentIsTheReversibleTangentAtWmax) {
-  // complex_tangent(F_b) equals the increment tangent just below W_max = W(F_b) (unloading side),
-  // 1e-8 relative, is real, and differs from the base tangent (the softening slope).
+TEST(EffectMullins, ComplexTangentIsTheReversibleTangentAtTheMaximum) {
+  // complex_tangent(F_b) equals the increment tangent just below the maximum D_max = D(F_b) (unloading side),
+  // 1e-8 relative, is real, and differs from the base tangent (the softening slope); energy and strain drivers.
   const auto foam = test::effect_test_foam();
-  const MullinsEffect m(foam, foam, kParameters);
   const Mat3 F_b = Vec3(0.75, 0.98, 0.98).asDiagonal();
-  std::vector<double> state{foam->evaluate(F_b).W * (1.0 + 1e-12)}, next(1);
-  const PointResponse r = m.integrate(F_b, F_b, 1.0, state, next);
-  const Mat6c C = m.complex_tangent(F_b, 10.0);
-  EXPECT_LT(test::rel_diff(r.dS_dE, C.real().eval()), 1e-8);
-  EXPECT_EQ(C.imag(), Mat6::Zero());
-  EXPECT_GT(test::rel_diff(C.real().eval(), foam->evaluate(F_b).dS_dE), 1e-3);
+  for (const MullinsParameters& p : {kParameters, kStrainParameters}) {
+    const MullinsEffect m(foam, foam, p);
+    std::vector<double> state{driver(p, *foam, F_b) * (1.0 + 1e-12)}, next(1);
+    const PointResponse r = m.integrate(F_b, F_b, 1.0, state, next);
+    const Mat6c C = m.complex_tangent(F_b, 10.0);
+    EXPECT_LT(test::rel_diff(r.dS_dE, C.real().eval()), 1e-8);
+    EXPECT_EQ(C.imag(), Mat6::Zero());
+    EXPECT_GT(test::rel_diff(C.real().eval(), foam->evaluate(F_b).dS_dE), 1e-3);
+  }
 }
 
 MullinsParameters with_share(double w) {
@@ -155,21 +190,25 @@ TEST(EffectMullins, RelaxationShareDrivesThePronyMemoryWithTheSoftenedStress) {
 }
 
 TEST(EffectMullins, RelaxationShareTangentsMatchFiniteDifferences) {
-  // Below a previous maximum over the Prony material with a non-trivial state, w = 0.5 and 1: 1e-6 relative.
+  // Below a previous maximum over the Prony material with a non-trivial state, w = 0.5 and 1, energy and strain
+  // drivers: 1e-6 relative.
   std::mt19937 rng(23);
   const auto foam = test::effect_test_foam();
   const auto visco = test::effect_test_visco();
-  for (double w : {0.5, 1.0}) {
-    const MullinsEffect m(visco, foam, with_share(w));
-    for (int trial = 0; trial < 4; ++trial) {
-      const Mat3 F_old = test::random_F(rng, 0.25), F = test::random_F(rng, 0.25);
-      std::vector<double> state(m.state_size()), next(m.state_size());
-      m.initial_state(state);
-      m.integrate(Mat3::Identity(), F_old, 0.05, state, next);
-      next.back() = 1.3 * foam->evaluate(F).W + kParameters.m;
-      EXPECT_LT(test::increment_tangent_error(m, F_old, F, 0.05, next), 1e-6) << "w = " << w << ", trial " << trial;
+  for (const MullinsParameters& driven : {kParameters, kStrainParameters})
+    for (double w : {0.5, 1.0}) {
+      MullinsParameters p = driven;
+      p.relaxation_share = w;
+      const MullinsEffect m(visco, foam, p);
+      for (int trial = 0; trial < 4; ++trial) {
+        const Mat3 F_old = test::random_F(rng, 0.25), F = test::random_F(rng, 0.25);
+        std::vector<double> state(m.state_size()), next(m.state_size());
+        m.initial_state(state);
+        m.integrate(Mat3::Identity(), F_old, 0.05, state, next);
+        next.back() = maximum_above(p, *foam, F);
+        EXPECT_LT(test::increment_tangent_error(m, F_old, F, 0.05, next), 1e-6) << "w = " << w << ", trial " << trial;
+      }
     }
-  }
 }
 
 TEST(EffectMullins, RelaxationShareComplexTangentMatchesATimeDomainSine) {
@@ -192,6 +231,13 @@ TEST(EffectMullins, RelaxationShareNeedsMullinsFirstOnAPronyMaterial) {
   const auto foam = test::effect_test_foam();
   EXPECT_THROW(MullinsEffect(foam, foam, with_share(0.5)), std::invalid_argument);
   EXPECT_THROW(MullinsEffect(test::effect_test_visco(), foam, with_share(1.5)), std::invalid_argument);
+}
+
+TEST(EffectMullins, NegativeStrainScaleIsRejected) {
+  MullinsParameters negative = kStrainParameters;
+  negative.strain_scale = -0.1;
+  const auto foam = test::effect_test_foam();
+  EXPECT_THROW(MullinsEffect(foam, foam, negative), std::invalid_argument);
 }
 
 }  // namespace
