@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "calibration/compare_output.hpp"
+#include "material/effect_catalog.hpp"
 
 #include "io/text_support.hpp"
 
@@ -153,6 +154,23 @@ nlohmann::json diagnosis_json(const Diagnosis& d) {
   return j;
 }
 
+namespace {
+
+/// What each value of the fragment's effects means: one line per key, from the catalogue.
+std::string parameter_meanings(const nlohmann::json& fragment) {
+  std::ostringstream o;
+  o << "\nWhat the values mean:\n\n";
+  for (const auto& effect : fragment.at("effects")) {
+    const material::EffectInfo* info = material::find_effect(effect.at("kind").get<std::string>());
+    if (!info) continue;
+    for (const auto& p : info->parameters)
+      if (effect.contains(p.name)) o << "- `" << info->kind << "." << p.name << "`: " << p.description << "\n";
+  }
+  return o.str();
+}
+
+}  // namespace
+
 std::string diagnosis_markdown(const Diagnosis& d) {
   std::ostringstream o;
   o << "# cushion diagnose\n\n## Verdict\n\n" << d.verdict << "\n";
@@ -205,8 +223,11 @@ std::string diagnosis_markdown(const Diagnosis& d) {
   if (d.winner) {
     const CandidateFit& w = d.candidates[*d.winner];
     o << "\n## Error per test and region with " << w.name() << "\n\n" << compare_table(w.compare);
-    o << "\n## Change to make: add to the material file\n\n```json\n" << d.fragment.dump(2) << "\n```\n"
-      << "\n(material_extended.json is the baseline with this change; run `cushion compare material_extended.json ...`.)\n";
+    o << "\n## Change to make: add to the material file\n\n```json\n"
+      << d.fragment.dump(2) << "\n```\n"
+      << parameter_meanings(d.fragment)
+      << "\n(material_extended.json is the baseline with this change; run `cushion compare material_extended.json "
+         "...`.)\n";
   }
   return o.str();
 }

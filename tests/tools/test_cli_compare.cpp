@@ -118,6 +118,9 @@ TEST(CliDiagnose, JointBaseNamesTheEffectAndWritesTheRefittedMaterial) {
   EXPECT_NE(r.output.find("joint"), std::string::npos) << r.output;
   EXPECT_TRUE(fs::exists(dir / "out" / "material_extended.json"));
   EXPECT_TRUE(fs::exists(dir / "out" / "fragment.json"));
+  // diagnosis.md says what each value of the change means (the catalogue's line for friction's yield stress)
+  EXPECT_NE(read_text(dir / "out" / "diagnosis.md").find("- `friction.yield_stress_kPa`: s_y: sliding stress"),
+            std::string::npos);
 }
 
 // From raw test files: no material given, so the base is calibrated first (the fit job into OUT/fit) and the
