@@ -71,15 +71,19 @@ double fit_start_of(const material::EffectParameterInfo& p) {
   return p.fit_start > 0.0 ? p.fit_start : p.default_value;
 }
 
+/// The value parameter p of effect e takes in this fit's start [file unit]: the value e gives, else fit_start_of(p).
+double value_in_fit(const material::EffectParameterInfo& p, const material::EffectSpec& e) {
+  const auto given = e.parameters.find(p.name);
+  return given != e.parameters.end() ? given->second : fit_start_of(p);
+}
+
 /// Whether diagnose fits parameter p of effect e here: not when p is fitted only without a branch that e has on (the
-/// branch's parameter given > 0, or not given and started > 0).
+/// branch's parameter at a value > 0 in this fit).
 bool fitted_here(const material::EffectInfo& info, const material::EffectParameterInfo& p,
                  const material::EffectSpec& e) {
   if (p.fitted_only_without.empty()) return true;
-  const auto given = e.parameters.find(p.fitted_only_without);
-  if (given != e.parameters.end()) return given->second == 0.0;
   for (const auto& q : info.parameters)
-    if (q.name == p.fitted_only_without) return fit_start_of(q) == 0.0;
+    if (q.name == p.fitted_only_without) return value_in_fit(q, e) == 0.0;
   return true;
 }
 
@@ -108,11 +112,10 @@ class CandidateModel {
         }
         // a log-scale parameter at 0 is a branch switched off: held there, where given as 0 (a second start, or a single
         // fitted from one) or started at 0 when not given (mullins strain_scale: the energy form unless a start sets it)
-        const auto given = effects_[e].parameters.find(p.name);
-        if (p.log_scale && (given != effects_[e].parameters.end() ? given->second : fit_start_of(p)) == 0.0) continue;
+        if (p.log_scale && value_in_fit(p, effects_[e]) == 0.0) continue;
         FreeParameter f{e, BaseTarget::none, 0, &p};
         // the log range is centred on the catalogue's start, or on the given value where that start is 0 (branch off)
-        const double start = p.log_scale && fit_start_of(p) == 0.0 ? given->second : fit_start_of(p);
+        const double start = p.log_scale && fit_start_of(p) == 0.0 ? value_in_fit(p, effects_[e]) : fit_start_of(p);
         if (p.log_scale) {
           const double lo = std::max(p.min_exclusive ? p.min * (1 + 1e-12) + 1e-300 : p.min, start * 1e-4);
           f.lower = std::log10(std::max(lo, 1e-300));
