@@ -93,11 +93,8 @@ class CandidateModel {
   CandidateModel(const material::MaterialSpec& base, std::vector<material::EffectSpec> effects, const Campaign& campaign,
                  const std::vector<TestNoise>& noise, const DiagnoseOptions& options)
       : base_(base), effects_(std::move(effects)), campaign_(campaign), noise_(noise), options_(options) {
-    // A memory parameter (mullins relaxation_share) is fitted only where its effect can edit the Prony memory
-    // (material::memory_edit_possible); else held at 0.
-    std::vector<material::EffectSpec> all = base_.effects;
-    all.insert(all.end(), effects_.begin(), effects_.end());
-    const bool memory_blocked = !material::memory_edit_possible(all, !base_.prony.empty());
+    // A memory parameter (mullins relaxation_share) is fitted only where there is a Prony memory to edit; else held at 0.
+    const bool memory_blocked = base_.prony.empty();
     for (std::size_t e = 0; e < effects_.size(); ++e) {
       const material::EffectInfo* info = material::find_effect(effects_[e].kind);
       for (const auto& p : info->parameters) {

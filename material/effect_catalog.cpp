@@ -222,13 +222,6 @@ void validate_effects(const std::vector<EffectSpec>& effects, const std::string&
   }
 }
 
-bool memory_edit_possible(const std::vector<EffectSpec>& effects, bool prony) {
-  return prony && std::none_of(effects.begin(), effects.end(), [](const EffectSpec& e) {
-           const EffectInfo* info = find_effect(e.kind);
-           return info && info->needs_viscoelastic;
-         });
-}
-
 std::vector<EffectSpec> composition_order(std::vector<EffectSpec> effects) {
   auto info = [](const EffectSpec& e) { return find_effect(e.kind); };
   auto edits_memory = [&](const EffectSpec& e) {
@@ -263,9 +256,11 @@ std::shared_ptr<const Material> apply_effects(std::shared_ptr<const Material> ba
       context.value[p.name] = it == effects[i].parameters.end() ? p.default_value : it->second;
     }
     const std::string& memory = entry.info.memory_parameter;
-    if (!memory.empty() && context.value.at(memory) > 0.0 && !dynamic_cast<const Viscoelastic*>(model.get()))
-      fail(source, i, memory, "> 0 needs a viscoelastic (Prony) material with '" + entry.info.kind +
-                                  "' as the first effect (it edits the Prony memory beneath it)");
+    if (!memory.empty() && context.value.at(memory) > 0.0 && !dynamic_cast<const PronyMemory*>(model.get()))
+      fail(source, i, memory,
+           "> 0 needs a viscoelastic (Prony) material with '" + entry.info.kind +
+               "' as the first effect, or directly over strain_dependent_prony (it edits the "
+               "Prony memory beneath it)");
     try {  // a combination of values the model refuses (each value alone is in range): name the effect
       model = entry.build(context);
     } catch (const std::invalid_argument& e) {

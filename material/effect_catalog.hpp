@@ -73,7 +73,8 @@ struct EffectInfo {
   bool needs_viscoelastic = false;   ///< only on a Viscoelastic base model, as the first effect
   bool needs_elastic_base = false;   ///< uses the reference elastic base (energy or initial tangent)
   /// A parameter whose value > 0 makes the effect edit the Prony memory beneath it (mullins relaxation_share): then
-  /// it must be the first effect on a Viscoelastic model. Empty: none.
+  /// it must sit directly over the Prony memory (the first effect on a Viscoelastic model, or next over
+  /// strain_dependent_prony). Empty: none.
   std::string memory_parameter;
 };
 
@@ -87,13 +88,9 @@ const EffectInfo* find_effect(const std::string& kind);
 /// "<source>: effects[i].<parameter>: <problem>" (or "effects[i].kind" for an unknown kind).
 void validate_effects(const std::vector<EffectSpec>& effects, const std::string& source = "material");
 
-/// Whether an effect of `effects` may set its memory parameter > 0 on a base with (`prony`) or without Prony terms:
-/// only on a Prony base with no needs_viscoelastic effect in the list (both edit the memory beneath them).
-bool memory_edit_possible(const std::vector<EffectSpec>& effects, bool prony);
-
 /// The effects in the order apply_effects needs: needs_viscoelastic ones first, then those whose memory parameter is
-/// > 0, then the rest, each group in list order. Both kinds edit the Prony memory beneath them and do not compose:
-/// with one of each, apply_effects still rejects the list.
+/// > 0, then the rest, each group in list order. Both kinds edit the Prony memory beneath them; one of each
+/// composes (strain_dependent_prony is a PronyMemory, material/viscoelastic.hpp).
 std::vector<EffectSpec> composition_order(std::vector<EffectSpec> effects);
 
 /// Validates, then wraps `base_model` in the effects in list order (the first effect is innermost).

@@ -13,14 +13,15 @@ MullinsEffect::MullinsEffect(std::shared_ptr<const Material> inner, std::shared_
                              MullinsParameters parameters)
     : EffectDecorator(inner, 1),
       energy_base_(std::move(energy_base)),
-      memory_(parameters.relaxation_share > 0.0 ? std::dynamic_pointer_cast<const Viscoelastic>(inner) : nullptr),
+      memory_(parameters.relaxation_share > 0.0 ? std::dynamic_pointer_cast<const PronyMemory>(inner) : nullptr),
       p_(parameters) {
   if (!energy_base_) throw std::invalid_argument("mullins: no elastic base for the energy");
   if (!(p_.relaxation_share >= 0.0 && p_.relaxation_share <= 1.0))
     throw std::invalid_argument("mullins: relaxation_share must lie in [0, 1]");
   if (p_.relaxation_share > 0.0 && !memory_)
     throw std::invalid_argument(
-        "mullins: relaxation_share > 0 needs a viscoelastic (Prony) material with mullins as the first effect");
+        "mullins: relaxation_share > 0 needs a Prony memory beneath: a viscoelastic (Prony) material with mullins as "
+        "the first effect, or directly over strain_dependent_prony");
   if (!(p_.r > 1.0) || !std::isfinite(p_.r)) throw std::invalid_argument("mullins: r must be > 1");
   if (!(p_.m > 0.0) || !std::isfinite(p_.m)) throw std::invalid_argument("mullins: m must be > 0");
   if (!(p_.beta >= 0.0) || !std::isfinite(p_.beta)) throw std::invalid_argument("mullins: beta must be >= 0");
@@ -63,7 +64,7 @@ PointResponse MullinsEffect::integrate(const Mat3& F_old, const Mat3& F_new, dou
   const double eta_value = 1.0 - std::erf(z) / p_.r;
   // d eta / dE = (2 / (r sqrt(pi) scale)) e^{-z^2} dD/dE (energy: dW/dE = S_base).
   const Vec6 deta_dE = 2.0 * std::exp(-z * z) / (p_.r * std::sqrt(std::numbers::pi) * scale_value) * d.dD_dE;
-  if (memory_) drive_memory_with_softened_stress(r, e, eta_value, deta_dE, dt, state_new);
+  if (memory_) drive_memory_with_softened_stress(r, F_new, e, eta_value, deta_dE, dt, state_new);
   // The softening left outside the memory: eta^(1-w) (w = 0: eta, the same operations as without a share).
   const double w = p_.relaxation_share, outer = w == 0.0 ? eta_value : std::pow(eta_value, 1.0 - w);
   const double douter_deta = w == 0.0 ? 1.0 : (1.0 - w) * std::pow(eta_value, -w);
@@ -72,16 +73,17 @@ PointResponse MullinsEffect::integrate(const Mat3& F_old, const Mat3& F_new, dou
   return r;
 }
 
-void MullinsEffect::drive_memory_with_softened_stress(PointResponse& r, const ElasticEval& e, double eta_value,
-                                                      const Vec6& deta_dE, double dt,
+void MullinsEffect::drive_memory_with_softened_stress(PointResponse& r, const Mat3& F_new, const ElasticEval& e,
+                                                      double eta_value, const Vec6& deta_dE, double dt,
                                                       std::span<double> state_new) const {
   const double w = p_.relaxation_share, zeta = std::pow(eta_value, w);
   const Vec6 dzeta_dE = w * std::pow(eta_value, w - 1.0) * deta_dE;
-  // The Viscoelastic's state starts with the long-term stress it stored (S_e): store zeta S_e there, and let the
-  // memory take the difference as if the long-term stress had risen by (zeta - 1) S_e more.
+  // The memory's state starts with the long-term stress the Viscoelastic stored (S_e): store zeta S_e there, and let
+  // the memory take the difference as if the long-term stress had risen by (zeta - 1) S_e more.
   Eigen::Map<Vec6>(state_new.data()) = zeta * e.S;
-  const double k = 1.0 + memory_->add_to_memory(state_new, dt, (zeta - 1.0) * e.S);  // 1 + sum a_i q_i
-  r.dS_dE += k * ((zeta - 1.0) * e.dS_dE + e.S * dzeta_dE.transpose());
+  const MemoryGain gain = memory_->drive_memory(F_new, state_new, dt, (zeta - 1.0) * e.S);
+  const double k = 1.0 + gain.k;  // Viscoelastic: 1 + sum a_i q_i
+  r.dS_dE += k * ((zeta - 1.0) * e.dS_dE + e.S * dzeta_dE.transpose()) + (zeta - 1.0) * e.S * gain.dk_dE.transpose();
   r.S += (zeta - 1.0) * k * e.S;
 }
 
@@ -96,7 +98,7 @@ Mat6c MullinsEffect::complex_tangent(const Mat3& F_base, double omega) const {
   const double deta_dD = 2.0 / (p_.r * std::sqrt(std::numbers::pi) * scale(d.D));
   const Mat6 softening = deta_dD * e.S * d.dD_dE.transpose();
   const double w = p_.relaxation_share;
-  const std::complex<double> share = memory_ ? w * prony_complex_factor(memory_->terms(), omega) + (1.0 - w) : 1.0;
+  const std::complex<double> share = memory_ ? w * memory_->memory_complex_factor(F_base, omega) + (1.0 - w) : 1.0;
   return inner_->complex_tangent(F_base, omega) + share * softening.cast<std::complex<double>>();
 }
 

@@ -26,17 +26,21 @@
 /// with S_inner at the relaxed base taken as the base stress S_base (exact when the inner model
 /// relaxes to the base: hyperelastic or viscoelastic inner).
 ///
-/// Relaxation share w in [0, 1] (docs/physics.md 5.2), only directly over a Viscoelastic: the Prony memory is driven
-/// by the softened long-term stress zeta S_e, zeta = eta^w, and the rest of the softening scales the whole stress:
-///   S = eta^(1-w) [zeta S_e + sum a_i H_i[zeta S_e]].
+/// Relaxation share w in [0, 1] (docs/physics.md 5.2), only directly over a Prony memory (material/viscoelastic.hpp
+/// PronyMemory: a Viscoelastic, or strain_dependent_prony over one): the memory is driven by the softened long-term
+/// stress zeta S_e, zeta = eta^w, and the rest of the softening scales the whole stress:
+///   S = eta^(1-w) [zeta S_e + sum a_i H_i[zeta S_e]]   (over a Viscoelastic).
 /// w = 0 is the form above; w = 1 softens the long-term stress before the memory (S = eta S_e + sum a_i H_i[eta S_e]).
-/// The Viscoelastic beneath has already advanced its memory from the stored (softened) state with S_e; the effect
-/// then stores zeta S_e and adds q_i (zeta - 1) S_e to each H_i (q_i the recursion weight), so that
-///   S_visco = S_inner + (zeta - 1) k S_e,  k = 1 + sum a_i q_i,
-///   dS_visco/dE = dS_inner/dE + k [(zeta - 1) C_e + S_e (x) dzeta/dE],  dzeta/dE = w eta^(w-1) deta/dE,
-///   dS/dE = eta^(1-w) dS_visco/dE + (1 - w) eta^(-w) S_visco (x) deta/dE.
+/// The memory beneath has already advanced from the stored (softened) state with S_e; the effect then stores
+/// zeta S_e and drives the memory with (zeta - 1) S_e more (PronyMemory::drive_memory: the stress rises by
+/// k_m (zeta - 1) S_e; Viscoelastic: k_m = sum a_i q_i, q_i the recursion weight; strain_dependent_prony:
+/// k_m = f(J) sum a_i q_i), so that
+///   S_visco = S_inner + (zeta - 1) k S_e,  k = 1 + k_m,
+///   dS_visco/dE = dS_inner/dE + k [(zeta - 1) C_e + S_e (x) dzeta/dE] + (zeta - 1) S_e (x) dk_m/dE,
+///   dzeta/dE = w eta^(w-1) deta/dE,  dS/dE = eta^(1-w) dS_visco/dE + (1 - w) eta^(-w) S_visco (x) deta/dE.
 /// complex_tangent about the shaken-down base: C* = C*_inner + [w f(omega) + 1 - w] S_base (x) deta/dE,
-/// f(omega) = 1 + sum a_i i omega tau_i/(1 + i omega tau_i) (the memory sees the softening's part w).
+/// f(omega) the memory's complex factor (Viscoelastic: 1 + sum a_i i omega tau_i/(1 + i omega tau_i); the memory
+/// sees the softening's part w).
 #include "material/effect_decorator.hpp"
 #include "material/hyperelastic.hpp"
 #include "material/viscoelastic.hpp"
@@ -55,8 +59,8 @@ struct MullinsParameters {
 class MullinsEffect final : public EffectDecorator {
  public:
   /// energy_base: the elastic model whose energy drives the softening (not null); with relaxation_share > 0 it must be
-  /// the long-term base of `inner`, which must be a Viscoelastic. Throws std::invalid_argument on parameters outside
-  /// the ranges above or a relaxation share > 0 over a model that is not a Viscoelastic.
+  /// the long-term base of `inner`, which must be a PronyMemory. Throws std::invalid_argument on parameters outside
+  /// the ranges above or a relaxation share > 0 over a model that is not a PronyMemory.
   MullinsEffect(std::shared_ptr<const Material> inner, std::shared_ptr<const Hyperelastic> energy_base,
                 MullinsParameters parameters);
 
@@ -82,11 +86,11 @@ class MullinsEffect final : public EffectDecorator {
   /// S_inner into S_visco with its tangent (formulas above).
   /// The scale of the erf's argument: m (energy) or m_e (strain) plus beta D_max.
   double scale(double D_max) const;
-  void drive_memory_with_softened_stress(PointResponse& r, const ElasticEval& e, double eta_value, const Vec6& deta_dE,
-                                         double dt, std::span<double> state_new) const;
+  void drive_memory_with_softened_stress(PointResponse& r, const Mat3& F_new, const ElasticEval& e, double eta_value,
+                                         const Vec6& deta_dE, double dt, std::span<double> state_new) const;
 
   std::shared_ptr<const Hyperelastic> energy_base_;
-  std::shared_ptr<const Viscoelastic> memory_;  ///< the Viscoelastic beneath when w > 0, else null
+  std::shared_ptr<const PronyMemory> memory_;  ///< the Prony memory beneath when w > 0, else null
   MullinsParameters p_;
 };
 

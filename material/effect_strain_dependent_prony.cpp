@@ -48,9 +48,19 @@ Vec6 StrainDependentPronyEffect::viscous_stress(const Mat3& F, std::span<const d
 }
 
 Mat6c StrainDependentPronyEffect::complex_tangent(const Mat3& F_base, double omega) const {
-  const std::complex<double> viscous = prony_complex_factor(visco_->terms(), omega) - 1.0;
   const Mat6 C_inf = visco_->long_term_base().evaluate(F_base).dS_dE;
-  return (1.0 + factor(F_base.determinant()) * viscous) * C_inf.cast<std::complex<double>>();
+  return memory_complex_factor(F_base, omega) * C_inf.cast<std::complex<double>>();
+}
+
+std::complex<double> StrainDependentPronyEffect::memory_complex_factor(const Mat3& F_base, double omega) const {
+  return 1.0 + factor(F_base.determinant()) * (prony_complex_factor(visco_->terms(), omega) - 1.0);
+}
+
+MemoryGain StrainDependentPronyEffect::drive_memory(const Mat3& F_new, std::span<double> state_new, double dt,
+                                                    const Vec6& dS) const {
+  const double J = F_new.determinant(), phi = factor(J);
+  const double A = visco_->add_to_memory(state_new, dt, std::pow(phi, w_) * dS);  // sum a_i q_i
+  return {phi * A, -c_ * phi / J * A * dJ_dE(F_new)};
 }
 
 std::string StrainDependentPronyEffect::describe() const {

@@ -18,12 +18,16 @@
 /// doubles. Small-amplitude relaxation about a relaxed preload J_b has amplitude f(J_b) sum a_i e^{-t/tau_i} for every
 /// w, and in the frequency domain (H_i = 0 at the relaxed base, so the dphi/dE terms vanish):
 ///   C* = C_inf(F_b) (1 + f(J_b) sum a_i i w tau_i / (1 + i w tau_i)).
+/// As a PronyMemory (mullins' relaxation share directly above, docs/physics.md 5.2): a long-term stress dS more
+/// enters each H_i weighted by phi^w and leaves scaled by phi^(1-w), so the stress rises by k dS, k = phi sum a_i q_i
+/// (q_i = (1 - e^{-x_i})/x_i), dk/dE = (sum a_i q_i) dphi/dE; its complex factor is 1 + f(J_b) sum a_i i w tau_i /
+/// (1 + i w tau_i).
 #include "material/effect_decorator.hpp"
 #include "material/viscoelastic.hpp"
 
 namespace cushion::material {
 
-class StrainDependentPronyEffect final : public EffectDecorator {
+class StrainDependentPronyEffect final : public EffectDecorator, public PronyMemory {
  public:
   /// inner: the Viscoelastic model whose Prony part is scaled (not null); c [-] finite; history_share w in [0, 1];
   /// else std::invalid_argument.
@@ -36,6 +40,8 @@ class StrainDependentPronyEffect final : public EffectDecorator {
   /// f(J)^{1-w} sum a_i H_i [MPa].
   Vec6 viscous_stress(const Mat3& F, std::span<const double> state) const override;
   std::string describe() const override;
+  MemoryGain drive_memory(const Mat3& F_new, std::span<double> state_new, double dt, const Vec6& dS) const override;
+  std::complex<double> memory_complex_factor(const Mat3& F_base, double omega) const override;
 
   /// Scale factor f(J) = J^{-c} [-] of the Prony contributions.
   double factor(double J) const;

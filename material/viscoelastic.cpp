@@ -133,6 +133,15 @@ double Viscoelastic::add_to_memory(std::span<double> state, double dt, const Vec
   return factor;
 }
 
+MemoryGain Viscoelastic::drive_memory(const Mat3& /*F_new*/, std::span<double> state_new, double dt,
+                                      const Vec6& dS) const {
+  return {add_to_memory(state_new, dt, dS), Vec6::Zero()};
+}
+
+std::complex<double> Viscoelastic::memory_complex_factor(const Mat3& /*F_base*/, double omega) const {
+  return prony_complex_factor(terms_, omega);
+}
+
 Vec6 Viscoelastic::viscous_stress(const Mat3& /*F*/, std::span<const double> state) const {
   Vec6 S = Vec6::Zero();
   for (std::size_t i = 0; i < terms_.size(); ++i) S += a_[i] * Eigen::Map<const Vec6>(state.data() + 6 * (i + 1));

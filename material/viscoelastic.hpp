@@ -31,8 +31,6 @@ enum class ModuliConvention {
 /// E_0 = E_inf + sum E_i (the instantaneous modulus). Throws std::invalid_argument on negative values.
 std::vector<PronyTerm> prony_from_absolute(double E_inf, const std::vector<double>& E, const std::vector<double>& tau);
 
-/// Complex modulus factor 1 + sum a_i i w tau_i / (1 + i w tau_i), a_i = g_i/(1 - sum g) (w in rad/s):
-/// multiply a long-term modulus by it to get the storage (real) and loss (imaginary) moduli.
 /// Decay e^{-x} and weight (1 - e^{-x})/x, x = dt/tau, of the exact recursion of a Prony state over an
 /// increment dt [s] for a relaxation time tau [s] when the long-term stress is linear in time over the
 /// increment (expm1 form; both 1 at dt = 0, the instantaneous jump): H_n+1 = decay H_n + weight dS_inf.
@@ -41,9 +39,32 @@ struct PronyRecursion {
 };
 PronyRecursion prony_recursion(double dt, double tau);
 
+/// Complex modulus factor 1 + sum a_i i w tau_i / (1 + i w tau_i), a_i = g_i/(1 - sum g) (w in rad/s):
+/// multiply a long-term modulus by it to get the storage (real) and loss (imaginary) moduli.
 std::complex<double> prony_complex_factor(const std::vector<PronyTerm>& terms, double omega);
 
-class Viscoelastic final : public Material {
+/// What an edit of a Prony memory gives (PronyMemory::drive_memory): the stress at F_new rises by k dS, and dk_dE
+/// [Voigt, per unit Green-Lagrange strain] is k's gradient at fixed dS (0 unless the memory's weight depends on F).
+struct MemoryGain {
+  double k = 0.0;  ///< [-]
+  Vec6 dk_dE = Vec6::Zero();
+};
+
+/// A model whose stress holds a Prony memory that an effect directly above may drive with more long-term stress
+/// (mullins' relaxation share): the Viscoelastic, or strain_dependent_prony over it. Its state starts with the
+/// long-term stress S_inf^n [MPa, PK2] that the Viscoelastic stored (6 doubles), the reference of the next increment.
+class PronyMemory {
+ public:
+  virtual ~PronyMemory() = default;
+  /// Adds to the memory of state_new (which this model's integrate wrote over an increment dt [s] to F_new) as if the
+  /// long-term stress had risen by dS [MPa, PK2] more over that increment.
+  virtual MemoryGain drive_memory(const Mat3& F_new, std::span<double> state_new, double dt, const Vec6& dS) const = 0;
+  /// About a relaxed base F_base at omega [rad/s]: the complex factor of a long-term stress oscillation that enters
+  /// the memory (Viscoelastic: prony_complex_factor; 1 + the viscous part).
+  virtual std::complex<double> memory_complex_factor(const Mat3& F_base, double omega) const = 0;
+};
+
+class Viscoelastic final : public Material, public PronyMemory {
  public:
   /// base: elastic model whose constants are read per `convention`; at most 20 terms; throws
   /// std::invalid_argument on g < 0, sum g >= 1, tau <= 0.
@@ -68,6 +89,9 @@ class Viscoelastic final : public Material {
   /// sum a_i q_i, the factor of that rise on the viscous stress. For effects that change what enters the memory
   /// (strain_dependent_prony's history share, mullins' relaxation share).
   double add_to_memory(std::span<double> state, double dt, const Vec6& dS) const;
+  /// k = add_to_memory's factor, dk_dE = 0.
+  MemoryGain drive_memory(const Mat3& F_new, std::span<double> state_new, double dt, const Vec6& dS) const override;
+  std::complex<double> memory_complex_factor(const Mat3& F_base, double omega) const override;
 
  private:
   std::shared_ptr<const Hyperelastic> long_term_;

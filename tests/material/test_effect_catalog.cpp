@@ -186,6 +186,16 @@ TEST(EffectCatalog, BadInputIsAnInputErrorNamingTheKey) {
   e = apply(visco, {{"mullins", {{"relaxation_share", 1.5}}}});
   EXPECT_NE(e.find("effects[0].relaxation_share: must be >= 0 and <= 1"), std::string::npos) << e;
   EXPECT_EQ(apply(visco, {{"mullins", {{"relaxation_share", 1.0}}}, {"friction", {}}}), "");
+  // ... or directly over strain_dependent_prony (itself first: a Prony memory), in composition_order's order.
+  EXPECT_EQ(apply(visco, {{"strain_dependent_prony", {}}, {"mullins", {{"relaxation_share", 1.0}}}}), "");
+  e = apply(visco, {{"mullins", {{"relaxation_share", 1.0}}}, {"strain_dependent_prony", {}}});
+  EXPECT_NE(e.find("effects[1].kind: 'strain_dependent_prony' needs a viscoelastic"), std::string::npos) << e;
+  const std::vector<EffectSpec> ordered =
+      composition_order({{"friction", {}}, {"mullins", {{"relaxation_share", 1.0}}}, {"strain_dependent_prony", {}}});
+  ASSERT_EQ(ordered.size(), 3u);
+  EXPECT_EQ(ordered[0].kind, "strain_dependent_prony");
+  EXPECT_EQ(ordered[1].kind, "mullins");
+  EXPECT_EQ(apply(visco, ordered), "");
   // validate_effects alone (no model needed) gives the same messages.
   e = input_error([] { validate_effects({{"mullins", {{"m", 1.0}}}}, "x.json"); });
   EXPECT_NE(e.find("x.json: effects[0].m: unknown parameter of 'mullins'"), std::string::npos) << e;

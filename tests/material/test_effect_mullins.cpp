@@ -1,7 +1,8 @@
 // Requirement: the Mullins (Ogden-Roxburgh) effect leaves first loading unchanged, softens unloading
 // by the closed-form eta, reloading retraces unloading below W_max and rejoins the base curve above it;
 // its increment tangent is exact and its complex tangent is the reversible tangent at W_max. With a relaxation share
-// w over a Prony material the memory is driven by eta^w S_e (checked against the test's own recursion). The same with
+// w over a Prony material the memory is driven by eta^w S_e (checked against the test's own recursion), also over
+// strain-dependent Prony beneath. The same with
 // the strain driver (strain_scale m_e > 0): the Biot strain norm D = ||U - I|| in place of W (here evaluated from the
 // eigenvalues of F^T F, not from the effect's principal decomposition; 1 - l on the confined path).
 #include <gtest/gtest.h>
@@ -11,6 +12,7 @@
 #include <numbers>
 
 #include "material/effect_mullins.hpp"
+#include "material/effect_strain_dependent_prony.hpp"
 #include "tests/material/test_effect_support.hpp"
 
 namespace cushion::material {
@@ -149,8 +151,11 @@ MullinsParameters with_share(double w) {
 }
 
 /// S11 of the foreign order along path() (laterally confined, dt = 0.1 s), by this test's own recursion:
-/// S = eta^(1-w) [zeta S_e + sum a_i H_i], H_i <- e^{-x} H_i + (1 - e^{-x})/x (zeta S_e - previous), zeta = eta^w.
-std::vector<double> softened_memory_reference(const Viscoelastic& visco, const Hyperelastic& base, double w) {
+/// S = eta^(1-w) [zeta S_e + phi^(1-w_s) sum a_i H_i], H_i <- e^{-x} H_i + (1 - e^{-x})/x phi^w_s (zeta S_e -
+/// previous), zeta = eta^w, with the strain-dependent Prony factor phi = J^-c (J = l here) of history share w_s
+/// beneath (c = 0: phi = 1, the Mullins effect directly over the Prony material).
+std::vector<double> softened_memory_reference(const Viscoelastic& visco, const Hyperelastic& base, double w,
+                                              double c = 0.0, double w_s = 0.0) {
   const std::vector<double> l = path();
   std::vector<double> H(visco.terms().size(), 0.0), S11;
   double W_max = 0.0, driving_old = 0.0, sum_g = 0.0;
@@ -159,15 +164,15 @@ std::vector<double> softened_memory_reference(const Viscoelastic& visco, const H
     const ElasticEval e = base.evaluate(confined(lk));
     W_max = std::max(W_max, e.W);
     const double eta = 1.0 - std::erf((W_max - e.W) / (kParameters.m + kParameters.beta * W_max)) / kParameters.r;
-    const double driving = std::pow(eta, w) * e.S(0);
-    double S = driving;
+    const double driving = std::pow(eta, w) * e.S(0), phi = std::pow(lk, -c);
+    double viscous = 0.0;
     for (std::size_t i = 0; i < H.size(); ++i) {
       const double x = 0.1 / visco.terms()[i].tau;
-      H[i] = std::exp(-x) * H[i] + (1.0 - std::exp(-x)) / x * (driving - driving_old);
-      S += visco.terms()[i].g / (1.0 - sum_g) * H[i];  // a_i = g_i / (1 - sum g)
+      H[i] = std::exp(-x) * H[i] + (1.0 - std::exp(-x)) / x * std::pow(phi, w_s) * (driving - driving_old);
+      viscous += visco.terms()[i].g / (1.0 - sum_g) * H[i];  // a_i = g_i / (1 - sum g)
     }
     driving_old = driving;
-    S11.push_back(std::pow(eta, 1.0 - w) * S);
+    S11.push_back(std::pow(eta, 1.0 - w) * (driving + std::pow(phi, 1.0 - w_s) * viscous));
   }
   return S11;
 }
@@ -189,26 +194,49 @@ TEST(EffectMullins, RelaxationShareDrivesThePronyMemoryWithTheSoftenedStress) {
   EXPECT_GT(std::abs(S[0][69] - S[2][69]), 0.01 * std::abs(S[2][69]));
 }
 
+TEST(EffectMullins, RelaxationShareComposesWithStrainDependentPronyBeneath) {
+  // Directly over strain-dependent Prony (c = 1.5, history share 0, 0.6 and 1) the memory is driven by eta^w S_e
+  // weighted by phi^w_s and read scaled by phi^(1-w_s): against the test's own recursion, 1e-9 relative, w = 1 and
+  // 0.5; and the result differs from the same Mullins over the plain Prony material by more than 1 % (the strain
+  // dependence is not lost).
+  const auto foam = test::effect_test_foam();
+  const auto visco = test::effect_test_visco();
+  const std::vector<double> l = path();
+  for (double w_s : {0.0, 0.6, 1.0})
+    for (double w : {1.0, 0.5}) {
+      const auto sdp = std::make_shared<StrainDependentPronyEffect>(visco, 1.5, w_s);
+      const std::vector<double> S = drive(MullinsEffect(sdp, foam, with_share(w)), l);
+      const std::vector<double> reference = softened_memory_reference(*visco, *foam, w, 1.5, w_s);
+      for (std::size_t k = 0; k < l.size(); ++k)
+        EXPECT_NEAR(S[k], reference[k], 1e-9 * std::abs(reference[k]))
+            << "w_s = " << w_s << ", w = " << w << ", l = " << l[k];
+      const std::vector<double> plain = drive(MullinsEffect(visco, foam, with_share(w)), l);
+      EXPECT_GT(std::abs(S[69] - plain[69]), 0.01 * std::abs(plain[69]));
+    }
+}
+
 TEST(EffectMullins, RelaxationShareTangentsMatchFiniteDifferences) {
-  // Below a previous maximum over the Prony material with a non-trivial state, w = 0.5 and 1, energy and strain
-  // drivers: 1e-6 relative.
+  // Below a previous maximum over the Prony material and over strain-dependent Prony on it (c = 1.5, history share
+  // 0.6) with a non-trivial state, w = 0.5 and 1, energy and strain drivers: 1e-6 relative.
   std::mt19937 rng(23);
   const auto foam = test::effect_test_foam();
   const auto visco = test::effect_test_visco();
-  for (const MullinsParameters& driven : {kParameters, kStrainParameters})
-    for (double w : {0.5, 1.0}) {
-      MullinsParameters p = driven;
-      p.relaxation_share = w;
-      const MullinsEffect m(visco, foam, p);
-      for (int trial = 0; trial < 4; ++trial) {
-        const Mat3 F_old = test::random_F(rng, 0.25), F = test::random_F(rng, 0.25);
-        std::vector<double> state(m.state_size()), next(m.state_size());
-        m.initial_state(state);
-        m.integrate(Mat3::Identity(), F_old, 0.05, state, next);
-        next.back() = maximum_above(p, *foam, F);
-        EXPECT_LT(test::increment_tangent_error(m, F_old, F, 0.05, next), 1e-6) << "w = " << w << ", trial " << trial;
+  const std::shared_ptr<const Material> sdp = std::make_shared<StrainDependentPronyEffect>(visco, 1.5, 0.6);
+  for (const std::shared_ptr<const Material>& memory : {std::shared_ptr<const Material>(visco), sdp})
+    for (const MullinsParameters& driven : {kParameters, kStrainParameters})
+      for (double w : {0.5, 1.0}) {
+        MullinsParameters p = driven;
+        p.relaxation_share = w;
+        const MullinsEffect m(memory, foam, p);
+        for (int trial = 0; trial < 4; ++trial) {
+          const Mat3 F_old = test::random_F(rng, 0.25), F = test::random_F(rng, 0.25);
+          std::vector<double> state(m.state_size()), next(m.state_size());
+          m.initial_state(state);
+          m.integrate(Mat3::Identity(), F_old, 0.05, state, next);
+          next.back() = maximum_above(p, *foam, F);
+          EXPECT_LT(test::increment_tangent_error(m, F_old, F, 0.05, next), 1e-6) << "w = " << w << ", trial " << trial;
+        }
       }
-    }
 }
 
 TEST(EffectMullins, RelaxationShareComplexTangentMatchesATimeDomainSine) {
@@ -225,6 +253,17 @@ TEST(EffectMullins, RelaxationShareComplexTangentMatchesATimeDomainSine) {
   const test::SineComparison a = test::compare_sine(shared, -0.25, 2000.0, 400, 10.0, 8, 400);
   const test::SineComparison b = test::compare_sine(outside, -0.25, 2000.0, 400, 10.0, 8, 400);
   EXPECT_GT(std::abs(a.frequency_domain / b.frequency_domain - 1.0), 0.02);
+  // Over strain-dependent Prony (c = 1.5, history share 0.6): the same tolerances, and the modulus differs from the
+  // plain Prony material's by more than them (f(J_b) = 0.75^-1.5 = 1.54 scales the memory).
+  const auto sdp = std::make_shared<StrainDependentPronyEffect>(visco, 1.5, 0.6);
+  const MullinsEffect over_sdp(sdp, foam, with_share(1.0));
+  for (double f : {1.0, 10.0}) {
+    const test::SineComparison c = test::compare_sine(over_sdp, -0.25, 2000.0, 400, f, 8, 400);
+    EXPECT_LT(c.modulus_error(), 0.01) << f << " Hz";
+    EXPECT_LT(c.phase_error_deg(), 0.2) << f << " Hz";
+  }
+  const test::SineComparison d = test::compare_sine(over_sdp, -0.25, 2000.0, 400, 10.0, 8, 400);
+  EXPECT_GT(std::abs(d.frequency_domain / a.frequency_domain - 1.0), 0.02);
 }
 
 TEST(EffectMullins, RelaxationShareNeedsMullinsFirstOnAPronyMaterial) {
