@@ -1,7 +1,9 @@
 #include "material/hyperfoam.hpp"
 
 #include <array>
+#include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 #include <stdexcept>
 
@@ -74,9 +76,15 @@ PrincipalResponse principal_response(const std::vector<HyperfoamTerm>& terms, co
   return r;
 }
 
+/// A number no other Hyperfoam constructed in this process has (the key of the evaluation memo).
+std::uint64_t next_instance_id() {
+  static std::atomic<std::uint64_t> next{1};
+  return next++;
+}
+
 }  // namespace
 
-Hyperfoam::Hyperfoam(std::vector<HyperfoamTerm> terms) : terms_(std::move(terms)) {
+Hyperfoam::Hyperfoam(std::vector<HyperfoamTerm> terms) : terms_(std::move(terms)), id_(next_instance_id()) {
   if (terms_.empty() || terms_.size() > 6) throw std::invalid_argument("Hyperfoam: need 1 to 6 terms");
   for (const HyperfoamTerm& t : terms_) {
     if (!std::isfinite(t.mu) || !std::isfinite(t.alpha) || t.alpha == 0.0)
@@ -86,9 +94,20 @@ Hyperfoam::Hyperfoam(std::vector<HyperfoamTerm> terms) : terms_(std::move(terms)
 }
 
 ElasticEval Hyperfoam::evaluate(const Mat3& F) const {
+  // The last evaluation of this thread, by instance and exact F (see the class comment).
+  struct Memo {
+    std::uint64_t id = 0;
+    Mat3 F;
+    ElasticEval e;
+  };
+  thread_local Memo memo;
+  if (memo.id == id_ && memo.F == F) return memo.e;
   const principal::Stretches st = principal::decompose(F);
   if (!st.failure.empty()) return principal::failure("Hyperfoam", st.failure);
-  return principal::assemble(principal_response(terms_, st.s), st, "Hyperfoam");
+  memo.e = principal::assemble(principal_response(terms_, st.s), st, "Hyperfoam");
+  memo.id = id_;
+  memo.F = F;
+  return memo.e;
 }
 
 Vec3 Hyperfoam::principal_kirchhoff(const Vec3& l) const {

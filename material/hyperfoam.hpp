@@ -4,6 +4,7 @@
 ///   beta_i = nu_i / (1 - 2 nu_i), with the beta_i -> 0 limit (1/beta)(J^(-a beta) - 1) -> -a ln J.
 /// Kirchhoff principal stress tau_a = 2 sum_i (mu_i/alpha_i)(l_a^a_i - J^(-a_i beta_i)); PK2 S_a = tau_a / l_a^2.
 /// Initial moduli: mu0 = sum mu_i, K0 = sum 2 mu_i (1/3 + beta_i).
+#include <cstdint>
 #include <vector>
 
 #include "material/hyperelastic.hpp"
@@ -23,6 +24,10 @@ class Hyperfoam final : public Hyperelastic {
   /// 1 <= terms.size() <= 6; throws std::invalid_argument otherwise or on alpha = 0, nu outside [0, 0.5).
   explicit Hyperfoam(std::vector<HyperfoamTerm> terms);
 
+  /// W [MPa], S [MPa, PK2] and dS/dE [MPa] at F. Remembers its last result per thread, keyed by this instance (a
+  /// number no other Hyperfoam of the process has; the terms never change after construction) and the exact F, and
+  /// returns it again for the same F: a Viscoelastic and a Mullins effect above it evaluate the same base at the same
+  /// F in one increment, and a held strain repeats F (docs/physics.md 9.11).
   ElasticEval evaluate(const Mat3& F) const override;
   std::shared_ptr<const Hyperelastic> scaled(double factor) const override;
   double initial_shear_modulus() const override;
@@ -36,6 +41,7 @@ class Hyperfoam final : public Hyperelastic {
 
  private:
   std::vector<HyperfoamTerm> terms_;
+  std::uint64_t id_ = 0;  ///< the evaluation memo's key (copies share it: same terms)
 };
 
 }  // namespace cushion::material

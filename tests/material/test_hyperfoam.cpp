@@ -1,9 +1,13 @@
 // Requirement: Hyperfoam returns the ABAQUS hyperfoam stresses of docs/physics.md section 2.3 in every
 // homogeneous mode, the exact tangent dS/dE (also at equal and nearly equal stretches), S = 2 dW/dC,
-// objective stresses, the documented initial moduli, and Status::failed for J <= 0 or overflow.
+// objective stresses, the documented initial moduli, and Status::failed for J <= 0 or overflow; its evaluation memo
+// never answers for another instance.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <memory>
+#include <thread>
 
 #include "material/hyperfoam.hpp"
 #include "tests/material/fd.hpp"
@@ -192,6 +196,34 @@ TEST(Hyperfoam, ObjectiveStressAndPrincipalKirchhoff) {
   const Mat3 tau = diag(l(0), l(1), l(2)) * from_voigt_stress(model.evaluate(diag(l(0), l(1), l(2))).S) *
                    diag(l(0), l(1), l(2));
   EXPECT_LT(rel_diff(tau.diagonal(), model.principal_kirchhoff(l)), 1e-12);
+}
+
+/// S_11 at F = diag(l) from principal_kirchhoff (not remembered): tau_1 / l_1^2.
+double principal_S11(const Hyperfoam& model, const Vec3& l) { return model.principal_kirchhoff(l)(0) / (l(0) * l(0)); }
+
+TEST(Hyperfoam, EvaluationMemoNeverAnswersForAnotherInstance) {
+  // evaluate remembers its last result per thread by instance and exact F. Instances made and destroyed in turn (so
+  // often at the same address) with other moduli, each evaluated at the same F, give their own S_11 (1e-12 relative
+  // against principal_kirchhoff, which does not remember); so do two threads alternating two instances at one F.
+  const Vec3 l(0.6, 1.0, 1.0);
+  const Mat3 F = diag(l(0), l(1), l(2));
+  for (int k = 1; k <= 20; ++k) {
+    const auto model = std::make_unique<Hyperfoam>(std::vector<HyperfoamTerm>{{1e-3 * k, 8.0, 0.0}});
+    EXPECT_NEAR(model->evaluate(F).S(0), principal_S11(*model, l), 1e-12 * std::abs(principal_S11(*model, l)));
+    EXPECT_EQ(model->evaluate(F).S, model->evaluate(F).S);  // the remembered result is the same
+  }
+  const Hyperfoam soft({{1e-3, 8.0, 0.0}}), stiff({{5e-3, -2.0, 0.1}});
+  auto alternate = [&](bool& ok) {
+    for (int k = 0; k < 2000; ++k) {
+      const Hyperfoam& m = k % 2 ? soft : stiff;
+      ok = ok && std::abs(m.evaluate(F).S(0) - principal_S11(m, l)) <= 1e-12 * std::abs(principal_S11(m, l));
+    }
+  };
+  bool ok_first = true, ok_second = true;
+  std::thread second(alternate, std::ref(ok_second));
+  alternate(ok_first);
+  second.join();
+  EXPECT_TRUE(ok_first && ok_second);
 }
 
 TEST(Hyperfoam, AlignedFrameMatchesRotatedFrame) {
