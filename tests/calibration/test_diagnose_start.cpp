@@ -59,7 +59,8 @@
 // of the energy, docs/physics.md 5.2 and 9.10). Scale-set c035, exponential damage s = [1 - d_inf (1 - exp(-e_max/e_d))]
 // s_e (d_inf 0.15, e_d 0.29) on a random foam: from the energy start alone Mullins was switched off (r at its bound
 // 1000, dBIC -56) and friction was named (2026-11-28); from the strain start Mullins reaches dBIC 227, chi2/N 1.01, every
-// test within 1.83x noise. Scale-set c052, Qi-Boyce-like s = s_e [1 - a tanh(e_max/e_s)(1 - (e/e_max)^p)] (a 0.42,
+// test within 1.83x noise (since the composition of Mullins' relaxation share with strain-dependent Prony, 2026-11-29:
+// Mullins + strain-dependent Prony, dBIC 253.8, chi2/N 0.90, the same 1.83x on dyn_25). Scale-set c052, Qi-Boyce-like s = s_e [1 - a tanh(e_max/e_s)(1 - (e/e_max)^p)] (a 0.42,
 // e_s 0.19, p 2.13) on a soft 50 kg/m3 foam: the energy start's Mullins (dBIC 2.595e4) was below friction's (2.855e4)
 // and friction + Mullins was named; from the strain start Mullins leads (3.128e4) and Mullins + friction is named.
 #include <gtest/gtest.h>
@@ -222,15 +223,24 @@ TEST(DiagnoseStart, PowerLawAirDashpotIsNamedAirFlowFromItsDashpotStart) {
   fs::remove_all(c.set);
 }
 
+/// The mullins entry of a diagnosis' effects fragment (in material::composition_order: strain_dependent_prony first).
+const nlohmann::json& mullins_in_fragment(const nlohmann::json& d) {
+  for (const auto& e : d.at("fragment").at("effects"))
+    if (e.at("kind") == "mullins") return e;
+  throw std::runtime_error("no mullins in the fragment");
+}
+
 TEST(DiagnoseStart, ExponentialDamageIsNamedMullinsFromItsStrainStart) {
   const BenchCampaign c = bench_campaign("diagnose_mullins_strain", "c035", "--base-refit scale");
   ASSERT_EQ(c.truth.at("forms").at(0).get<std::string>(), "exponential_damage") << "the generator's mix changed";
 
+  // Mullins first: since Mullins' relaxation share composes with strain-dependent Prony (docs/physics.md 5.2) the
+  // pair Mullins + strain-dependent Prony wins here (a second family the truth does not have; docs/physics.md 9.10).
   const nlohmann::json d = cushion::foreign_program::diagnose_raw(c.dir, "");
-  ASSERT_EQ(d.at("winner"), "mullins") << d.at("verdict");
+  ASSERT_EQ(d.at("winner").get<std::string>().rfind("mullins", 0), 0u) << d.at("verdict");
   for (const auto& t : d.at("candidates").at(0).at("compare").at("tests"))
     EXPECT_LT(t.at("error_over_noise").get<double>(), 2.0) << t.at("name");
-  EXPECT_GT(d.at("fragment").at("effects").at(0).at("strain_scale").get<double>(), 0.0);
+  EXPECT_GT(mullins_in_fragment(d).at("strain_scale").get<double>(), 0.0);
   fs::remove_all(c.set);
 }
 
@@ -240,6 +250,6 @@ TEST(DiagnoseStart, QiBoyceLikeSofteningIsNamedMullinsFirstFromItsStrainStart) {
 
   const nlohmann::json d = cushion::foreign_program::diagnose_raw(c.dir, "");
   ASSERT_EQ(d.at("winner").get<std::string>().rfind("mullins", 0), 0u) << d.at("verdict");
-  EXPECT_GT(d.at("fragment").at("effects").at(0).at("strain_scale").get<double>(), 0.0);
+  EXPECT_GT(mullins_in_fragment(d).at("strain_scale").get<double>(), 0.0);
   fs::remove_all(c.set);
 }
