@@ -99,7 +99,9 @@ const std::vector<Entry>& entries() {
          {"beta", "beta: growth of the energy scale with W_max", 0.1, 0.0, 10.0, false, false, false},
          {"relaxation_share",
           "w: share of the softening eta^w applied to the long-term stress that drives the Prony memory (the rest, "
-          "eta^(1-w), scales the whole stress); 0: eta S_inner; > 0 only as the first effect on a Prony material",
+          "eta^(1-w), scales the whole stress); 0: eta S_inner; > 0 only directly over the Prony memory (the first "
+          "effect "
+          "on a Prony material, or next after strain_dependent_prony)",
           0.0, 0.0, 1.0, false, true, false, 0.5},
          {"strain_scale",
           "m_e: 0, the energy drives the softening (Ogden-Roxburgh); > 0, the Biot strain norm ||U - I|| does, with "
