@@ -19,7 +19,10 @@
 ///     catalogue range, and 4 decades either side of the default for log-scale ones. Start: a coarse scan
 ///     of the effect's parameters one at a time (log-scale: default x 10^{-3..3}; else default x {0, 0.3, 1, 3, 10}),
 ///     then half a decade either side of each log-scale value chosen, a value kept only when it lowers chi2 by 0.1 %
-///     (the base factors start at the reference's fit and are not scanned), then Ceres
+///     (the base factors start at the reference's fit and are not scanned; with joint_base a single's trials are
+///     scored by the chi2 left after the best linear step of the base factors, from their residual Jacobian at the
+///     start, and Levenberg-Marquardt starts from the scan's point with that step where it lowers chi2: an effect
+///     the fitted base has partly absorbed is then not kept off by the share the base already carries), then Ceres
 ///     bounded Levenberg-Marquardt with forward-difference Jacobian (parameters clamped to their bounds before each run;
 ///     the projected line search by bisection, cost only) on the noise-normalised residuals
 ///     (compare.hpp normalised_residuals). Candidates run on `threads` threads, longest pairs first; a thread with no

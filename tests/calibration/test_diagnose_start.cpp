@@ -28,6 +28,15 @@
 // 2026-11-27). Scanned together (2026-11-28): dBIC 29711 against the base refit's 749, with the truth's spring and time
 // (fitted M 7.9 kPa, Maxwell time c0/M at J = 1 83 ms; our spring is M J^-2 in a uniaxial test at nu = 0).
 //
+// The scan scored with the base compensated (diagnose.cpp TrialScore: each trial's chi2 after the best linear step of
+// the base factors, the start then moved by that step). Campaign c036 of seed 2025: the same Maxwell air branch (E0
+// 0.89 kPa, p 1.93, tau0 7.0 ms, m 1.60) on a stiff 65 kg/m3 foam, which `cushion fit` took largely into its 16 ms Prony
+// term (g 0.18 against the truth's base 0.11): the fitted base leaves the sweeps at 2.5x noise. Scored with the base
+// held, every trial of the air flow only added to that term, the scan kept the branch off and Levenberg-Marquardt ended
+// in a soft-spring basin (M 0.06 kPa, K at its bound: dBIC -25.6, "the base calibration is the first suspect";
+// 2026-11-28 benchmark). Compensated (2026-11-29): pneumatic, dBIC 109.6, every test within 1.5x noise, M 1.55 kPa and
+// Maxwell time 11 ms (our spring is M J^-2 at nu = 0: M is E0 there).
+//
 // The air flow's drag (pneumatic pressure_share 0, the form diagnose fits: catalogue diagnose_value). Campaign c025 of the scale set: a 1D Darcy pressure
 // s = C e'/l^(n+1) (C 0.055 kPa s, n 2.03: K0 6.5e-5 mm^2) on a soft 50 kg/m3 foam. Our isotropic pressure also pushes
 // the free laterals of the dynamic tests out, so its damping saturates (45x and 74x noise on the sweeps with the truth's
@@ -94,6 +103,23 @@ BenchCampaign bench_campaign(const std::string& tag, const std::string& name, co
   return c;
 }
 
+/// A fitted pneumatic fragment entry's spring M [kPa] and Maxwell time at J = 1, c0/M with c0 = eta R^2/(8 K) [kPa s],
+/// each within a factor 3 of the truth's stretch-Maxwell E0 and tau0 (the fragment lists the fitted parameters; the
+/// rest are the catalogue's defaults).
+void expect_air_branch_within_3x(const nlohmann::json& air, const nlohmann::json& maxwell) {
+  auto value = [&air](const std::string& key) {
+    for (const auto& p : cushion::material::find_effect("pneumatic")->parameters)
+      if (p.name == key) return air.value(key, p.default_value);
+    throw std::invalid_argument(key);
+  };
+  const double eta_kPa_s = value("air_viscosity_Pa_s") * 1e-3, R = value("drainage_length_mm");
+  const double c0_kPa_s = eta_kPa_s * R * R / (8.0 * value("permeability_mm2"));
+  const double spring = value("air_modulus_kPa") / maxwell.at("modulus_kPa").get<double>();
+  const double time = c0_kPa_s / value("air_modulus_kPa") / maxwell.at("time_s").get<double>();
+  EXPECT_LT(std::abs(std::log(spring)), std::log(3.0)) << "fitted/truth spring " << spring;
+  EXPECT_LT(std::abs(std::log(time)), std::log(3.0)) << "fitted/truth Maxwell time " << time;
+}
+
 }  // namespace
 
 TEST(DiagnoseStart, WeakJenkinsFrictionIsFoundFromTheScanOfItsOwnParameters) {
@@ -132,19 +158,19 @@ TEST(DiagnoseStart, MaxwellAirFlowIsFoundFromTheScanOfPermeabilityAndAirModulusT
   ASSERT_EQ(d.at("winner"), "pneumatic") << d.at("verdict");
   EXPECT_GT(d.at("candidates").at(0).at("delta_bic").get<double>(),
             10.0 * d.at("base_refit").at("delta_bic").get<double>());
-  const nlohmann::json& air = d.at("fragment").at("effects").at(0);
-  auto value = [&air](const std::string& key) {  // the fragment lists the fitted parameters; the rest are defaults
-    for (const auto& p : cushion::material::find_effect("pneumatic")->parameters)
-      if (p.name == key) return air.value(key, p.default_value);
-    throw std::invalid_argument(key);
-  };
-  // Spring M against E0; Maxwell time at J = 1: c0/M, c0 = eta R^2/(8 K) [kPa s], against tau0.
-  const double spring = value("air_modulus_kPa") / maxwell.at("modulus_kPa").get<double>();
-  const double eta_kPa_s = value("air_viscosity_Pa_s") * 1e-3, R = value("drainage_length_mm");
-  const double c0_kPa_s = eta_kPa_s * R * R / (8.0 * value("permeability_mm2"));
-  const double time = c0_kPa_s / value("air_modulus_kPa") / maxwell.at("time_s").get<double>();
-  EXPECT_LT(std::abs(std::log(spring)), std::log(3.0)) << "fitted/truth spring " << spring;
-  EXPECT_LT(std::abs(std::log(time)), std::log(3.0)) << "fitted/truth Maxwell time " << time;
+  expect_air_branch_within_3x(d.at("fragment").at("effects").at(0), maxwell);
+  fs::remove_all(c.set);
+}
+
+TEST(DiagnoseStart, MaxwellAirFlowAbsorbedByTheFittedPronyIsFoundFromTheBaseCompensatedScan) {
+  const BenchCampaign c = bench_campaign("diagnose_air_absorbed", "c036");
+  ASSERT_EQ(c.truth.at("forms").at(0).get<std::string>(), "stretch_maxwell") << "the generator's mix changed";
+  const nlohmann::json& maxwell = c.truth.at("parameters").at("pneumatic");
+
+  const nlohmann::json d = cushion::foreign_program::diagnose_raw(c.dir, "--candidates pneumatic,stiffness_damping");
+  ASSERT_EQ(d.at("winner"), "pneumatic") << d.at("verdict");
+  EXPECT_TRUE(d.at("winner_at_noise_level").get<bool>()) << d.at("verdict");
+  expect_air_branch_within_3x(d.at("fragment").at("effects").at(0), maxwell);
   fs::remove_all(c.set);
 }
 
