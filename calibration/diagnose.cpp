@@ -78,13 +78,14 @@ double value_in_fit(const material::EffectParameterInfo& p, const material::Effe
   return given != e.parameters.end() ? given->second : fit_start_of(p);
 }
 
-/// Whether diagnose fits parameter p of effect e here: not when p is fitted only without a branch that e has on (the
-/// branch's parameter at a value > 0 in this fit).
+/// Whether diagnose fits parameter p of effect e here: not when p is fitted only without a branch that e has on, or
+/// only with a branch that e has off (the branch's parameter at a value > 0 in this fit: on).
 bool fitted_here(const material::EffectInfo& info, const material::EffectParameterInfo& p,
                  const material::EffectSpec& e) {
-  if (p.fitted_only_without.empty()) return true;
-  for (const auto& q : info.parameters)
-    if (q.name == p.fitted_only_without) return value_in_fit(q, e) == 0.0;
+  for (const auto& q : info.parameters) {
+    if (q.name == p.fitted_only_without && value_in_fit(q, e) != 0.0) return false;
+    if (q.name == p.fitted_only_with && value_in_fit(q, e) == 0.0) return false;
+  }
   return true;
 }
 

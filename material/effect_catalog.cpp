@@ -54,8 +54,11 @@ const std::vector<Entry>& entries() {
           "flow: a Maxwell branch of time eta R^2/(8 K M); 0: no trapped-air spring (Darcy dashpot)",
           0.0, 0.0, 1e9, false, true, true, 100.0, "permeability_mm2", std::nullopt, 0.0},
          {"air_modulus_exponent",
-          "r: the trapped air stiffens as the cells shrink, M(J) = M J^-r: 0 constant, 1 isothermal ideal gas (Boyle)",
-          0.0, 0.0, 5.0, false, false, false},
+          "r: the trapped air stiffens as the cells shrink, M(J) = M J^-r: 0 constant, 1 isothermal ideal gas (Boyle); "
+          "< 0: an empirical stretch dependence of the spring, whose nominal stiffness goes as l^-(r + 2) in a "
+          "uniaxial "
+          "test at nu = 0",
+          0.0, -2.0, 5.0, false, true, false, 0.0, "", std::nullopt, std::nullopt, "", "air_modulus_kPa"},
          {"rate_exponent",
           "q: flow law p = c(J) sign(v)|v|^q of the volumetric rate v [1/s]: 1 Darcy, < 1 resistance thinning with "
           "rate, > 1 inertial (Forchheimer-like) losses",

@@ -63,6 +63,10 @@ struct EffectParameterInfo {
   /// is fitted for the dashpot, trapped-air modulus 0, and held at 1, Darcy, in the Maxwell branch: free there it took
   /// a foreign Maxwell branch to q 3 and n_K -2; docs/physics.md 9.9).
   std::string fitted_only_without{};
+  /// Another log-scale parameter of the same effect whose 0 switches a branch off: diagnose fits this one only in a fit
+  /// where that branch is on, and holds it at its default otherwise (empty: always fitted; the air flow's trapped-air
+  /// modulus exponent is meaningless in the dashpot, trapped-air modulus 0; docs/physics.md 5.1).
+  std::string fitted_only_with{};
 };
 
 /// One effect of the catalogue.

@@ -17,8 +17,8 @@ PneumaticEffect::PneumaticEffect(std::shared_ptr<const Material> inner, Pneumati
     throw std::invalid_argument("pneumatic: permeability exponent must be >= -2");
   if (!positive(p_.air_viscosity)) throw std::invalid_argument("pneumatic: air viscosity must be > 0");
   if (!(p_.air_modulus > 0.0)) throw std::invalid_argument("pneumatic: air modulus must be > 0 (infinite: dashpot)");
-  if (!(p_.air_modulus_exponent >= 0.0 && p_.air_modulus_exponent <= 5.0))
-    throw std::invalid_argument("pneumatic: air modulus exponent must be in [0, 5]");
+  if (!(p_.air_modulus_exponent >= -2.0 && p_.air_modulus_exponent <= 5.0))
+    throw std::invalid_argument("pneumatic: air modulus exponent must be in [-2, 5]");
   if (!(p_.rate_exponent >= 0.1 && p_.rate_exponent <= 3.0))
     throw std::invalid_argument("pneumatic: rate exponent must be in [0.1, 3]");
   if (!(p_.pressure_share >= 0.0 && p_.pressure_share <= 1.0))

@@ -20,7 +20,8 @@
 /// integrated by backward Euler with p the own state:  p = [p_old - M (J - J_old)/J] / (1 + dt M / c(J)).
 /// The trapped air stiffens as the cells shrink (air_modulus_exponent r, default 0: constant): M = M(J) = M0 J^-r,
 /// evaluated at the increment's end; an isothermal ideal gas filling the cells gives r = 1 (Boyle: p_abs ~ 1/J, so
-/// dp/d(ln J) = -p_abs ~ -p_atm/J; docs/physics.md 5.1).
+/// dp/d(ln J) = -p_abs ~ -p_atm/J; docs/physics.md 5.1). r in [-2, 0) softens the spring with compression, an
+/// empirical stretch dependence of the branch (its nominal spring in a uniaxial test at nu = 0 goes as l^-(2 + r)).
 /// M -> infinity gives back the dashpot p = -c(J) (dJ/dt)/J (the default: air_modulus infinite); with M finite the
 /// air raises the storage modulus at frequencies above 1/(2 pi tau) and relaxes under a hold, and tau depends on the
 /// compression through K(J) (docs/physics.md 5.1).
@@ -70,7 +71,7 @@ struct PneumaticParameters {
   double permeability_exponent = 2;  ///< n_K [-], >= -2: K = K0 J^{n_K}
   double air_viscosity = 1.8e-11;    ///< eta_air [MPa s] (1.8e-5 Pa s), > 0
   double air_modulus = std::numeric_limits<double>::infinity();  ///< M0 [MPa], > 0, at J = 1; infinite: Darcy dashpot
-  double air_modulus_exponent = 0.0;  ///< r [-], in [0, 5]: M(J) = M0 J^-r (0: constant; 1: isothermal gas, Boyle)
+  double air_modulus_exponent = 0.0;  ///< r [-], in [-2, 5]: M(J) = M0 J^-r (0: constant; 1: isothermal gas, Boyle)
   double rate_exponent = 1.0;        ///< q [-], in [0.1, 3]: flow law p = c(J) g(v), g ~ sign(v)|v|^q; 1: Darcy
   double pressure_share = 1.0;       ///< s [-], in [0, 1]: share of isotropic pressure; 1 - s: drag c(J) h(|D|) D
 };

@@ -69,6 +69,14 @@ TEST(EffectCatalog, EveryEntryIsSelfDescribing) {
         ASSERT_NE(partner, e.parameters.end()) << p.name << " scan_with " << p.scan_with;
         EXPECT_TRUE(partner->fit) << p.scan_with;
       }
+      for (const std::string* branch : {&p.fitted_only_without, &p.fitted_only_with}) {
+        if (branch->empty()) continue;  // a fitted parameter held by a log-scale branch switch of the same effect
+        EXPECT_TRUE(p.fit) << p.name;
+        const auto other = std::find_if(e.parameters.begin(), e.parameters.end(),
+                                        [branch](const EffectParameterInfo& q) { return q.name == *branch; });
+        ASSERT_NE(other, e.parameters.end()) << p.name << " held by " << *branch;
+        EXPECT_TRUE(other->log_scale && other->min == 0.0) << *branch << ": its 0 must switch a branch off";
+      }
     }
   }
   EXPECT_EQ(kinds, expected);
