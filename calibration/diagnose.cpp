@@ -286,7 +286,8 @@ bool clearly_better(double chi2, double best) {
 /// step of the base factors (the residual projected off the columns of their Jacobian at the scan's start; the
 /// step itself by compensated). Without it an effect that the fitted base has partly absorbed (a Prony term at the air
 /// flow's Maxwell time) only adds to the base's share at every trial, the scan keeps the effect off, and
-/// Levenberg-Marquardt starts in another basin (foreign stretch-Maxwell air flow: seed 2025 c036 and c038; docs/physics.md 9.12).
+/// Levenberg-Marquardt starts in another basin (foreign stretch-Maxwell air flow: seed 2025 c036 and c038;
+/// docs/physics.md 9.12).
 class TrialScore {
  public:
   TrialScore(const CandidateModel& m, std::size_t n_residuals) : m_(m), n_(n_residuals) {}
