@@ -282,6 +282,12 @@ bool clearly_better(double chi2, double best) {
   return std::isfinite(best) ? chi2 < best * (1.0 - 1e-3) : chi2 < best;  // best infinite: the model failed there
 }
 
+/// A start of Levenberg-Marquardt and its chi2.
+struct Start {
+  std::vector<double> u;
+  double chi2 = 0.0;
+};
+
 /// How a start scan scores a trial u: its chi2, or, once compensate_base has run, the chi2 left after the best LINEAR
 /// step of the base factors (the residual projected off the columns of their Jacobian at the scan's start; the
 /// step itself by compensated). Without it an effect that the fitted base has partly absorbed (a Prony term at the air
@@ -293,8 +299,9 @@ class TrialScore {
   TrialScore(const CandidateModel& m, std::size_t n_residuals) : m_(m), n_(n_residuals) {}
   const CandidateModel& model() const { return m_; }
 
-  /// The base factors' residual Jacobian at u (forward differences), on two threads while `spare` lends a core. No
-  /// base factor free, or the model failing at u or a step: scores stay plain chi2.
+  /// The base factors' residual Jacobian at u (forward differences of a fixed step in log10, a secant over the range a
+  /// start's compensation moves; ForwardDifferenceCost's Ceres rule would step 1e-8 at a factor's start u = 0), on two
+  /// threads while `spare` lends a core. No base factor free, or the model failing at u or a step: scores stay chi2.
   void compensate_base(const std::vector<double>& u, SpareCores* spare) {
     for (std::size_t i = 0; i < u.size(); ++i)
       if (m_.free()[i].is_base()) base_.push_back(i);
@@ -322,18 +329,20 @@ class TrialScore {
     return r.squaredNorm();
   }
 
-  /// u with the base factors moved by the linear step that minimises the score (clamped to their bounds); u itself
-  /// without compensate_base.
-  std::vector<double> compensated(std::vector<double> u) const {
-    if (base_.empty()) return u;
+  /// The start of Levenberg-Marquardt from the scan's point u: u with the base factors moved by the linear step that
+  /// minimises the score (clamped to their bounds) where that lowers chi2, else u (chi2 infinite where the model fails).
+  Start start_from(std::vector<double> u) const {
     Eigen::VectorXd r(static_cast<Eigen::Index>(n_));
-    if (!m_.residuals_at(u.data(), r.data(), n_)) return u;
+    if (!m_.residuals_at(u.data(), r.data(), n_)) return {u, std::numeric_limits<double>::infinity()};
+    Start plain{u, r.squaredNorm()};
+    if (base_.empty()) return plain;
     const Eigen::VectorXd d = qr_.solve(-r);
     for (std::size_t k = 0; k < base_.size(); ++k) {
       const FreeParameter& f = m_.free()[base_[k]];
       u[base_[k]] = std::clamp(u[base_[k]] + d[static_cast<Eigen::Index>(k)], f.lower, f.upper);
     }
-    return u;
+    const double chi2 = m_.chi2_at(u.data());
+    return chi2 < plain.chi2 ? Start{u, chi2} : plain;
   }
 
  private:
@@ -411,12 +420,6 @@ double refine_start(const TrialScore& score, std::vector<double>& u, const std::
   return best;
 }
 
-/// A start of Levenberg-Marquardt and its chi2.
-struct Start {
-  std::vector<double> u;
-  double chi2 = 0.0;
-};
-
 /// The start search of `scan` (see Scan) from u, then refine_start. A single's scan (Scan::effect) scores trials with
 /// the base factors' linear compensation (TrialScore) and starts from the compensated point where its chi2 is lower.
 Start scan_start(const CandidateModel& m, std::vector<double> u, Scan scan, std::size_t n_residuals,
@@ -450,11 +453,7 @@ Start scan_start(const CandidateModel& m, std::vector<double> u, Scan scan, std:
   for (std::size_t i : in_turn) best = scan_parameter(score, u, i, best, spare);
   std::erase_if(scanned, [&m](std::size_t i) { return m.free()[i].is_base(); });
   refine_start(score, u, scanned, best, spare);
-  const std::vector<double> c = score.compensated(u);
-  const double chi2 = m.chi2_at(u.data());
-  if (c == u) return {u, chi2};
-  const double chi2_c = m.chi2_at(c.data());
-  return chi2_c < chi2 ? Start{c, chi2_c} : Start{u, chi2};
+  return score.start_from(std::move(u));
 }
 
 /// The lowest cost 0.5 |r|^2 among the points a fit evaluated, and where (safe from two threads).

@@ -56,8 +56,7 @@ const std::vector<Entry>& entries() {
          {"air_modulus_exponent",
           "r: the trapped air stiffens as the cells shrink, M(J) = M J^-r: 0 constant, 1 isothermal ideal gas (Boyle); "
           "< 0: an empirical stretch dependence of the spring, whose nominal stiffness goes as l^-(r + 2) in a "
-          "uniaxial "
-          "test at nu = 0",
+          "uniaxial test at nu = 0",
           0.0, -2.0, 5.0, false, true, false, 0.0, "", std::nullopt, std::nullopt, "", "air_modulus_kPa"},
          {"rate_exponent",
           "q: flow law p = c(J) sign(v)|v|^q of the volumetric rate v [1/s]: 1 Darcy, < 1 resistance thinning with "
@@ -103,8 +102,7 @@ const std::vector<Entry>& entries() {
          {"relaxation_share",
           "w: share of the softening eta^w applied to the long-term stress that drives the Prony memory (the rest, "
           "eta^(1-w), scales the whole stress); 0: eta S_inner; > 0 only directly over the Prony memory (the first "
-          "effect "
-          "on a Prony material, or next after strain_dependent_prony)",
+          "effect on a Prony material, or next after strain_dependent_prony)",
           0.0, 0.0, 1.0, false, true, false, 0.5},
          {"strain_scale",
           "m_e: 0, the energy drives the softening (Ogden-Roxburgh); > 0, the Biot strain norm ||U - I|| does, with "
