@@ -135,15 +135,26 @@ const std::vector<Entry>& entries() {
        }},
       {{"stiffness_damping",
         "stiffness-proportional (Rayleigh beta) damping beta_s C_d dE/dt, C_d = (1 - w) C0 + w C_e: the initial "
-        "elastic tangent C0 (w = 0) or the current one C_e (w = 1)",
-        {{"beta_s", "beta_s: damping time (the paper's Rayleigh beta = 1e-4 s)", 1e-4, 0.0, 1.0, false, true, false},
+        "elastic tangent C0 (w = 0) or the current one C_e (w = 1); with q < 1 a fractional derivative D^q E in place "
+        "of dE/dt",
+        {{"beta_s", "beta_s: damping time (the paper's Rayleigh beta = 1e-4 s; at the reference frequency when q < 1)",
+          1e-4, 0.0, 1.0, false, true, false},
          {"current_tangent_share", "w: share of the current elastic tangent in the damping stiffness (0: initial)", 0.0,
-          0.0, 1.0, false, true, false, 0.5}},
+          0.0, 1.0, false, true, false, 0.5},
+         {"derivative_order",
+          "q: order of the damping's time derivative D^q (1: a dashpot; below 1: fractional, a "
+          "spring-pot whose loss grows as omega^q)",
+          1.0, 0.1, 1.0, false, true, false},
+         {"order_reference_frequency_Hz",
+          "f_r: frequency at which beta_s is the damping time whatever q (the stress is "
+          "beta_s (2 pi f_r)^(1-q) C_d D^q E)",
+          5.0, 0.0, 1e6, true, false, false}},
         false,
         true},
        [](const BuildContext& c) -> std::shared_ptr<const Material> {
-         return std::make_shared<StiffnessDampingEffect>(c.inner, c.reference_base, c.value.at("beta_s"),
-                                                         c.value.at("current_tangent_share"));
+         return std::make_shared<StiffnessDampingEffect>(
+             c.inner, c.reference_base, c.value.at("beta_s"), c.value.at("current_tangent_share"),
+             c.value.at("derivative_order"), c.value.at("order_reference_frequency_Hz"));
        }},
   };
   return table;

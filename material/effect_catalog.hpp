@@ -11,7 +11,8 @@
 ///   friction                rate-independent frictional hysteresis (elasto-plastic parallel branch)
 ///   mullins                 Ogden-Roxburgh softening below the largest energy reached
 ///   strain_dependent_prony  Prony moduli scaled by J^{-c} (needs a viscoelastic material; first in the list)
-///   stiffness_damping       Rayleigh-beta damping beta_s C_d dE/dt at material level (C_d: initial or current tangent)
+///   stiffness_damping       Rayleigh-beta damping beta_s C_d dE/dt at material level (C_d: initial or current tangent),
+///                           or a fractional derivative D^q E in place of dE/dt (derivative_order q < 1)
 /// The "reference elastic base" of mullins (energy W) and stiffness_damping (C0 at F = I) is the
 /// LONG-TERM base when the base model is Viscoelastic, else the elastic base.
 #include <map>

@@ -1,6 +1,8 @@
 #include "material/effect_stiffness_damping.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 
@@ -11,19 +13,35 @@ std::shared_ptr<const Hyperelastic> checked(std::shared_ptr<const Hyperelastic> 
   if (!base) throw std::invalid_argument("stiffness_damping: no elastic base");
   return base;
 }
+
+SpringPotBank checked_bank(double order) {
+  if (!(order > 0.0 && order <= 1.0))
+    throw std::invalid_argument("stiffness_damping: derivative_order must lie in (0, 1]");
+  return SpringPotBank(order);
+}
 }  // namespace
 
 StiffnessDampingEffect::StiffnessDampingEffect(std::shared_ptr<const Material> inner,
                                                std::shared_ptr<const Hyperelastic> elastic_base, double beta_s,
-                                               double current_share)
-    : EffectDecorator(std::move(inner), 0),
+                                               double current_share, double order, double reference_frequency_Hz)
+    : StiffnessDampingEffect(std::move(inner), std::move(elastic_base), beta_s, current_share, checked_bank(order),
+                             reference_frequency_Hz) {}
+
+StiffnessDampingEffect::StiffnessDampingEffect(std::shared_ptr<const Material> inner,
+                                               std::shared_ptr<const Hyperelastic> elastic_base, double beta_s,
+                                               double current_share, SpringPotBank bank, double reference_frequency_Hz)
+    : EffectDecorator(std::move(inner), bank.memory_size(6)),
       base_(checked(std::move(elastic_base))),
       C0_(base_->evaluate(Mat3::Identity()).dS_dE),
       beta_(beta_s),
-      share_(current_share) {
+      share_(current_share),
+      bank_(std::move(bank)),
+      coefficient_(beta_s * std::pow(2.0 * std::numbers::pi * reference_frequency_Hz, 1.0 - bank_.order())) {
   if (!(beta_ >= 0.0) || !std::isfinite(beta_)) throw std::invalid_argument("stiffness_damping: beta_s must be >= 0");
   if (!(share_ >= 0.0 && share_ <= 1.0))
     throw std::invalid_argument("stiffness_damping: current_tangent_share must lie in [0, 1]");
+  if (!(reference_frequency_Hz > 0.0) || !std::isfinite(reference_frequency_Hz))
+    throw std::invalid_argument("stiffness_damping: order_reference_frequency_Hz must be > 0");
 }
 
 Mat6 StiffnessDampingEffect::damping_tangent(const Mat3& F) const {
@@ -34,23 +52,43 @@ Mat6 StiffnessDampingEffect::damping_tangent(const Mat3& F) const {
 PointResponse StiffnessDampingEffect::integrate(const Mat3& F_old, const Mat3& F_new, double dt,
                                                 std::span<const double> state_old, std::span<double> state_new) const {
   PointResponse r = integrate_inner(F_old, F_new, dt, state_old, state_new);
-  if (r.status == Status::failed || dt == 0.0) return r;
-  const Vec6 E_rate = (to_voigt_strain(green_lagrange(F_new)) - to_voigt_strain(green_lagrange(F_old))) / dt;
+  if (r.status == Status::failed) return r;
+  if (bank_.branches() == 0) {  // q = 1: the dashpot, no memory
+    if (dt == 0.0) return r;
+    const Vec6 E_rate = (to_voigt_strain(green_lagrange(F_new)) - to_voigt_strain(green_lagrange(F_old))) / dt;
+    const Mat6 C_d = damping_tangent(F_old);
+    r.S += beta_ * C_d * E_rate;
+    r.dS_dE += (beta_ / dt) * C_d;
+    return r;
+  }
+  // q < 1: the bank's memories of C_d-weighted strain increments (stress-like Voigt) in the own state
+  const std::span<const double> old_memory = own(state_old);
+  const std::span<double> new_memory = own(state_new);
+  Vec6 memory_stress;
+  if (dt == 0.0) {  // no time passes: the memories carry over and give their stress, no new increment enters
+    std::copy(old_memory.begin(), old_memory.end(), new_memory.begin());
+    bank_.memory_value(new_memory, {memory_stress.data(), 6});
+    r.S += coefficient_ * memory_stress;
+    return r;
+  }
   const Mat6 C_d = damping_tangent(F_old);
-  r.S += beta_ * C_d * E_rate;
-  r.dS_dE += (beta_ / dt) * C_d;
+  const Vec6 dS = C_d * (to_voigt_strain(green_lagrange(F_new)) - to_voigt_strain(green_lagrange(F_old)));
+  bank_.advance(dt, {dS.data(), 6}, old_memory, new_memory, {memory_stress.data(), 6});
+  r.S += coefficient_ * (memory_stress + (bank_.dashpot() / dt) * dS);
+  r.dS_dE += (coefficient_ * bank_.increment_weight(dt)) * C_d;
   return r;
 }
 
 Mat6c StiffnessDampingEffect::complex_tangent(const Mat3& F_base, double omega) const {
   return inner_->complex_tangent(F_base, omega) +
-         std::complex<double>(0.0, omega * beta_) * damping_tangent(F_base).cast<std::complex<double>>();
+         (coefficient_ * bank_.transfer(omega)) * damping_tangent(F_base).cast<std::complex<double>>();
 }
 
 std::string StiffnessDampingEffect::describe() const {
   std::ostringstream o;
   o << "stiffness-proportional damping (beta_s = " << beta_ << " s";
   if (share_ > 0.0) o << ", current-tangent share " << share_;
+  if (bank_.order() < 1.0) o << ", fractional order " << bank_.order();
   o << ") over " << inner_->describe();
   return o.str();
 }
