@@ -485,13 +485,15 @@ ceres::Solver::Summary minimise(const CandidateModel& model, std::vector<double>
   ceres::Problem problem;
   BestPoint best;
   const std::size_t n = u.size();
+  std::vector<double> upper;
+  for (const FreeParameter& f : model.free()) upper.push_back(f.upper);
   auto* cost = new ForwardDifferenceCost(
       [&model, &best, n, n_residuals](const double* x, double* r) {
         if (!model.residuals_at(x, r, n_residuals)) return false;
         best.offer(x, n, r, n_residuals);
         return true;
       },
-      static_cast<int>(u.size()), static_cast<int>(n_residuals), 1e-5, spare);
+      static_cast<int>(u.size()), static_cast<int>(n_residuals), 1e-5, spare, std::move(upper));
   problem.AddResidualBlock(cost, nullptr, u.data());
   for (std::size_t i = 0; i < u.size(); ++i) {
     problem.SetParameterLowerBound(u.data(), static_cast<int>(i), model.free()[i].lower);

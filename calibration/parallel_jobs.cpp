@@ -2,16 +2,20 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace cushion::calibration {
 
 ForwardDifferenceCost::ForwardDifferenceCost(Residuals residuals, int parameters, int n_residuals, double relative_step,
-                                             SpareCores* spare)
+                                             SpareCores* spare, std::vector<double> upper_bounds)
     : residuals_(std::move(residuals)),
       parameters_(parameters),
       n_residuals_(n_residuals),
       relative_step_(relative_step),
-      spare_(spare) {
+      spare_(spare),
+      upper_(std::move(upper_bounds)) {
+  if (!upper_.empty() && upper_.size() != static_cast<std::size_t>(parameters))
+    throw std::invalid_argument("ForwardDifferenceCost: one upper bound per parameter");
   mutable_parameter_block_sizes()->push_back(parameters);
   set_num_residuals(n_residuals);
 }
@@ -44,7 +48,8 @@ bool ForwardDifferenceCost::Evaluate(double const* const* parameters, double* re
     const double step = std::max(min_step, relative_step_ * std::abs(u[j]));
     x[j] = u[j] + step;
     double signed_step = step;
-    if (!residuals_(x.data(), r_step.data())) {  // the model fails just beyond u: the backward difference instead
+    const bool beyond_bound = !upper_.empty() && x[j] > upper_[column];
+    if (beyond_bound || !residuals_(x.data(), r_step.data())) {  // beyond the bound or the model fails: backward
       x[j] = u[j] - step;
       signed_step = -step;
       if (!residuals_(x.data(), r_step.data())) {
@@ -53,7 +58,15 @@ bool ForwardDifferenceCost::Evaluate(double const* const* parameters, double* re
       }
     }
     const double one_over_step = 1.0 / signed_step;
-    for (int i = 0; i < n_residuals_; ++i) J[i * parameters_ + j] = (r_step[i] - residuals[i]) * one_over_step;
+    double gradient = 0.0;  // d(cost)/du_j = sum_i r_i dr_i/du_j
+    for (int i = 0; i < n_residuals_; ++i) {
+      J[i * parameters_ + j] = (r_step[i] - residuals[i]) * one_over_step;
+      gradient += residuals[i] * J[i * parameters_ + j];
+    }
+    // At the upper bound with the descent direction outward the bound is active: the zero column a clamping model
+    // gives, so that the step of the other parameters is not the projection of one that leaves the box.
+    if (beyond_bound && gradient < 0.0)
+      for (int i = 0; i < n_residuals_; ++i) J[i * parameters_ + j] = 0.0;
   });
   return ok;
 }

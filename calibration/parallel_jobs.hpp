@@ -67,10 +67,18 @@ void parallel_for(std::size_t n, SpareCores* spare, const std::function<void(std
 /// whose forward point fails takes the backward difference (r(u) - r(u - step e_j)) / step; only when both fail does
 /// the Jacobian fail (a fit whose model fails just beyond a point, e.g. a power-law air flow whose free-stretch Newton
 /// stops converging, then stops there with Ceres' FAILURE). `residuals` must be safe to call from two threads at once.
+/// upper_bounds (empty: none; else one per parameter): a column whose forward point lies beyond its parameter's upper
+/// bound takes the backward difference, and keeps it only when the cost falls inward (the gradient sum_i r_i J_ij > 0);
+/// where it falls outward the bound is active and the column is zero, as a model that clamps its parameters gives it.
+/// Without the backward difference bounded Levenberg-Marquardt could never move a parameter back off (or start it from)
+/// its upper bound (stiffness_damping derivative_order, started at 1: docs/physics.md 5.4b); with it kept where the
+/// bound is active, Ceres' step for the other parameters is the projection of one that leaves the box, and Mullins fits
+/// with r at its bound ended worse (docs/physics.md 9.13).
 class ForwardDifferenceCost final : public ceres::CostFunction {
  public:
   using Residuals = std::function<bool(const double* u, double* r)>;
-  ForwardDifferenceCost(Residuals residuals, int parameters, int n_residuals, double relative_step, SpareCores* spare);
+  ForwardDifferenceCost(Residuals residuals, int parameters, int n_residuals, double relative_step, SpareCores* spare,
+                        std::vector<double> upper_bounds = {});
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
 
  private:
@@ -78,6 +86,7 @@ class ForwardDifferenceCost final : public ceres::CostFunction {
   int parameters_, n_residuals_;
   double relative_step_;
   SpareCores* spare_;
+  std::vector<double> upper_;
 };
 
 }  // namespace cushion::calibration

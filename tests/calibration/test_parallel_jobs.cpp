@@ -114,6 +114,45 @@ TEST(ForwardDifferenceCost, AFailingForwardStepTakesTheBackwardDifference) {
   }
 }
 
+TEST(ForwardDifferenceCost, AParameterAtItsUpperBoundTakesTheBackwardDifference) {
+  // A model that clamps u_0 to its upper bound 1 (as diagnose's does): r_i = (i + 1) min(u_0, 1)^2 + u_1 (r > 0: the cost
+  // falls inward). At u_0 = 1 the forward column would be 0; with the bound given it is the backward difference
+  // (i + 1)(2 - h), h = 1e-5 (1e-9 relative), and the column of u_1 (bound 10, far) stays the forward one. Without
+  // bounds: the zero column, as before.
+  auto clamped = [](const double* u, double* r) {
+    const double u0 = std::min(u[0], 1.0);
+    for (int i = 0; i < kResiduals; ++i) r[i] = (i + 1) * u0 * u0 + u[1];
+    return true;
+  };
+  const std::vector<double> u = {1.0, 2.0};
+  std::vector<double> r(kResiduals), J(kResiduals * 2);
+  const double* p[] = {u.data()};
+  double* j[] = {J.data()};
+  const cc::ForwardDifferenceCost bounded(clamped, 2, kResiduals, 1e-5, nullptr, {1.0, 10.0});
+  ASSERT_TRUE(bounded.Evaluate(p, r.data(), j));
+  const double h = 1e-5;
+  for (int i = 0; i < kResiduals; ++i) {
+    EXPECT_NEAR(J[i * 2], (i + 1) * (2.0 - h), 1e-9 * (i + 1)) << i;
+    EXPECT_NEAR(J[i * 2 + 1], 1.0, 1e-9) << i;
+  }
+  const cc::ForwardDifferenceCost unbounded(clamped, 2, kResiduals, 1e-5, nullptr);
+  ASSERT_TRUE(unbounded.Evaluate(p, r.data(), j));
+  for (int i = 0; i < kResiduals; ++i) EXPECT_EQ(J[i * 2], 0.0) << i;
+  // r_i = (i + 1) min(u_0, 1)^2 - 100: the cost falls as u_0 grows, i.e. outward: the bound is active, the column zero
+  auto pulled_out = [](const double* u, double* r) {
+    const double u0 = std::min(u[0], 1.0);
+    for (int i = 0; i < kResiduals; ++i) r[i] = (i + 1) * u0 * u0 - 100.0 + u[1];
+    return true;
+  };
+  const cc::ForwardDifferenceCost active(pulled_out, 2, kResiduals, 1e-5, nullptr, {1.0, 10.0});
+  ASSERT_TRUE(active.Evaluate(p, r.data(), j));
+  for (int i = 0; i < kResiduals; ++i) {
+    EXPECT_EQ(J[i * 2], 0.0) << i;
+    EXPECT_NEAR(J[i * 2 + 1], 1.0, 1e-9) << i;
+  }
+  EXPECT_THROW(cc::ForwardDifferenceCost(clamped, 2, kResiduals, 1e-5, nullptr, {1.0}), std::invalid_argument);
+}
+
 TEST(ParallelJobs, ParallelForCallsEachIndexOnceAndRunAllKeepsJobOrder) {
   cc::SpareCores spare;
   spare.lend();
