@@ -1079,8 +1079,9 @@ void polish_leading_singles(const CandidateJobs& c, std::vector<CandidateFit>& f
 }
 
 /// Ranking: a single is supported when it beats the reference by strong_evidence, a pair when it beats the
-/// best single and the reference by strong_evidence, none when the reference alone brings every test to the noise
-/// level; supported first, then by dBIC; warnings for failed or unconverged candidates.
+/// best single and the reference by strong_evidence and explains pair_share of the chi2 the best single leaves, none
+/// when the reference alone brings every test to the noise level; supported first, then by dBIC; warnings for failed or
+/// unconverged candidates.
 void rank_candidates(std::vector<CandidateFit> fits, std::vector<CandidateFit> pairs, const std::vector<std::size_t>& top,
                      const DiagnoseOptions& options, Diagnosis& d) {
   const double gain = base_gain(d);
@@ -1088,8 +1089,17 @@ void rank_candidates(std::vector<CandidateFit> fits, std::vector<CandidateFit> p
   for (auto& f : fits)
     f.supported = !base_enough && f.converged && f.support_delta_bic() > gain + options.strong_evidence;
   const double best_single = top.empty() ? 0.0 : fits[top.front()].delta_bic;
-  for (auto& f : pairs)
+  const double single_chi2 = top.empty() ? 0.0 : fits[top.front()].chi2;
+  for (auto& f : pairs) {
     f.supported = !base_enough && f.converged && f.delta_bic > std::max(best_single, gain) + options.strong_evidence;
+    const double share = single_chi2 > 0.0 ? (single_chi2 - f.chi2) / single_chi2 : 0.0;
+    if (f.supported && !top.empty() && share < options.pair_share) {
+      f.supported = false;
+      f.support_note = "its second effect explains " + fmt(100.0 * share, 2) + " % of the chi2 that " +
+                       fits[top.front()].name() + " leaves; a pair must explain " + fmt(100.0 * options.pair_share, 2) +
+                       " %";
+    }
+  }
   for (auto& f : fits) d.candidates.push_back(std::move(f));
   for (auto& f : pairs) d.candidates.push_back(std::move(f));
   for (const auto& f : d.candidates)

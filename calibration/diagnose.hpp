@@ -33,7 +33,7 @@
 ///  3. Pairs (only when the best single leaves some test beyond noise): the best single combined with each of the
 ///     next `pairs_from` - 1, started from their single fits (the best single's base), the start scan over the added
 ///     effect's parameters only (the best single's effect held at its fit); a pair started from a polished single
-///     counts the parameters its polish added.
+///     counts the parameters its polish added. A pair must also explain pair_share of the chi2 the single leaves.
 ///  4. Penalised figure: BIC = chi2 + k ln N (chi2: sum of squared noise-normalised residuals, N their
 ///     number, k the fitted parameters); dBIC = BIC_baseline - BIC_candidate (> 0: better). A candidate
 ///     is SUPPORTED when dBIC > strong_evidence (Kass & Raftery: > 10 is very strong) AND it beats by
@@ -71,6 +71,14 @@ struct DiagnoseOptions {
   int max_iterations = 12;        ///< Ceres iterations per candidate
   int pairs_from = 3;             ///< best singles considered for pairs (each pair has the best one)
   double strong_evidence = 10.0;  ///< dBIC threshold [-]
+  /// A pair is preferred to the best single only when, besides beating it by strong_evidence, its second effect
+  /// explains at least this share of the chi2 the single leaves: (chi2_single - chi2_pair) >= pair_share chi2_single.
+  /// Where the single leaves a model-form misfit (chi2/N of 2-30, residuals smooth along each test, so far from N
+  /// independent errors) any second effect's extra freedom saves more than the dBIC threshold: measured on the two
+  /// benchmark sets (docs/physics.md 9.13), spurious second families saved 1-43 % of their single's chi2 (median 14 % on
+  /// the scale set), the right second families 24-89 %: the two overlap, 25 % costs a right pair at 24 %. 0: the dBIC
+  /// rule alone.
+  double pair_share = 0.25;
   int threads = 2;
   std::vector<std::string> candidates;  ///< restrict to these kinds (empty: the whole catalogue)
   /// Fit every candidate together with the base-refit factors (log10 factor in [-1, 1] on each hyperfoam mu_i and
@@ -155,6 +163,9 @@ struct CandidateFit {
   std::string warning;                     ///< usable but not converged (iteration limit), else empty
   double chi2 = 0.0, bic = 0.0, delta_bic = 0.0;
   bool supported = false;
+  /// Why a converged candidate is not supported although its dBIC passes (a pair whose second effect explains less
+  /// than DiagnoseOptions::pair_share of what the best single leaves), else empty.
+  std::string support_note;
   CompareResult compare;                   ///< every test with the candidate added
   material::MaterialSpec fitted;           ///< the baseline with the candidate at its fitted parameters
                                            ///< (and the base moduli refitted, joint_base or the base refit)

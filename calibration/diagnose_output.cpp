@@ -146,6 +146,7 @@ nlohmann::json diagnosis_json(const Diagnosis& d) {
                       {"converged", c.converged}, {"supported", c.supported}, {"message", c.message},
                       {"chi2", c.chi2},           {"delta_bic", std::isfinite(c.delta_bic) ? nlohmann::json(c.delta_bic) : nlohmann::json(nullptr)},
                       {"evaluations", c.evaluations}, {"seconds", c.seconds}, {"effects", effects_json(c.effects)}};
+    jc["support_note"] = c.support_note;  // why a converged candidate whose dBIC passes is not supported, else ""
     jc["polished"] = c.polished;  // step 2b: refitted with the base's Prony times and hyperfoam exponents free too
     if (c.polished && std::isfinite(c.delta_bic_unpolished)) jc["delta_bic_unpolished"] = c.delta_bic_unpolished;
     if (!c.compare.tests.empty()) jc["compare"] = compare_json(c.compare, c.name());
@@ -210,7 +211,10 @@ std::string diagnosis_markdown(const Diagnosis& d) {
         << (c.compare.tests.empty() ? "-" : fmt(c.chi2 / d.residuals)) << " |";
       for (std::size_t t = 0; t < names.size(); ++t)
         o << " " << (t < c.compare.tests.size() ? fmt(c.compare.tests[t].noise_ratio(), 3) : "-") << " |";
-      const std::string status = c.supported ? "supported" : c.converged ? "not supported" : c.message;
+      const std::string status = c.supported              ? "supported"
+                                 : !c.converged           ? c.message
+                                 : c.support_note.empty() ? "not supported"
+                                                          : "not supported (" + c.support_note + ")";
       o << " " << status;
       if (c.polished)
         o << " (polished: Prony times and exponents free too, dBIC " << fmt(c.delta_bic_unpolished, 4) << " before)";

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <iostream>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 
 #include "calibration/campaign.hpp"
@@ -101,6 +102,17 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
              std::to_string(cushion::calibration::DiagnoseOptions{}.polished_singles) +
              "; 0: off; support is still judged against the base refit without them)")
       ->check(CLI::Range(0, 5));
+  sub->add_option(
+         "--pair-share", opt->options.pair_share,
+         "a pair is named only when its second effect explains at least this share of the chi2 the best single "
+         "leaves, besides beating it by dBIC 10 (default " +
+             [] {
+               std::ostringstream o;
+               o << cushion::calibration::DiagnoseOptions{}.pair_share;
+               return o.str();
+             }() +
+             "; 0: the dBIC rule alone; docs/physics.md 9.13)")
+      ->check(CLI::Range(0.0, 1.0));
   sub->add_flag("--held-out", opt->held_out,
                 "name an effect only if it also predicts each test left out of its fit better than the base refit "
                 "(leave one test out; slower; off by default: with five tests of different kinds it vetoed the right "

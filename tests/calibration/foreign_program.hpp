@@ -31,14 +31,15 @@ inline std::filesystem::path generate(const std::string& tag, int count, unsigne
   return d;
 }
 
-/// report.json of `cushion diagnose DIR/campaign.json OPTIONS -o DIR/diag` (from raw data: the fit included); the verdict
+/// report.json of `cushion diagnose DIR/campaign.json OPTIONS -o DIR/OUTPUT` (from raw data: the fit included); the verdict
 /// is printed for the record.
-inline nlohmann::json diagnose_raw(const std::filesystem::path& campaign_dir, const std::string& options) {
+inline nlohmann::json diagnose_raw(const std::filesystem::path& campaign_dir, const std::string& options,
+                                   const std::string& output = "diag") {
   const std::string command = std::string("\"") + CUSHION_BINARY + "\" diagnose \"" +
                               (campaign_dir / "campaign.json").string() + "\" -o \"" +
-                              (campaign_dir / "diag").string() + "\" " + options + " > /dev/null 2>&1";
+                              (campaign_dir / output).string() + "\" " + options + " > /dev/null 2>&1";
   EXPECT_EQ(std::system(command.c_str()), 0) << command;
-  std::ifstream in(campaign_dir / "diag" / "report.json");
+  std::ifstream in(campaign_dir / output / "report.json");
   const nlohmann::json r = nlohmann::json::parse(in);
   std::cout << campaign_dir.filename().string() << ": " << r.at("verdict").get<std::string>() << "\n";
   return r;
