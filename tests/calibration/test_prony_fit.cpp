@@ -70,7 +70,9 @@ TEST(PronyFit, NonNegativityIsEnforcedAtTheOptimum) {
   for (int j = 0; j < 6; ++j) {
     EXPECT_GE(x(j), 0.0);
     EXPECT_GE(g(j), -1e-6 * gscale) << "j " << j;
-    if (x(j) > 1e-9) EXPECT_NEAR(g(j), 0.0, 1e-6 * gscale) << "j " << j;
+    if (x(j) > 1e-9) {
+      EXPECT_NEAR(g(j), 0.0, 1e-6 * gscale) << "j " << j;
+    }
   }
   EXPECT_NEAR(fit.chi2, (A * x - Eigen::VectorXd::Ones(40)).squaredNorm(), 1e-12);
 }
