@@ -4,14 +4,14 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "material/viscoelastic.hpp"
+
 namespace cushion::material {
 
 namespace {
 constexpr double tau_lo_s = 1e-5, tau_hi_s = 1e5;
 constexpr int nodes_per_decade = 2;
 }  // namespace
-
-double relaxation_average(double x) { return x > 1e-8 ? -std::expm1(-x) / x : 1.0 - 0.5 * x; }
 
 SpringPotBank::SpringPotBank(double q) : q_(q) {
   if (!(q > 0.0 && q <= 1.0)) throw std::invalid_argument("spring-pot: the order q must lie in (0, 1]");
@@ -41,9 +41,9 @@ const SpringPotBank::StepFactors& SpringPotBank::factors(double dt) const {
   f.phi.resize(tau_.size());
   f.weight = eta_ / dt + kappa_;
   for (std::size_t k = 0; k < tau_.size(); ++k) {
-    const double x = dt / tau_[k];
-    f.decay[k] = std::exp(-x);
-    f.phi[k] = relaxation_average(x);
+    const PronyRecursion p = prony_recursion(dt, tau_[k]);  // a Maxwell branch's recursion is a Prony term's
+    f.decay[k] = p.decay;
+    f.phi[k] = p.weight;
     f.weight += m_[k] * f.phi[k];
   }
   return f;

@@ -31,7 +31,8 @@ class SpringPotBank {
   std::size_t memory_size(std::size_t width) const { return tau_.empty() ? 0 : width * (tau_.size() + 1); }
 
   /// Weight of an increment Delta x taken linearly over dt > 0 in D^q x at the increment's end: eta/dt + kappa +
-  /// sum_k m_k phi(dt/tau_k), phi(x) = (1 - e^-x)/x [s^-q] (the tangent of the recursion below).
+  /// sum_k m_k phi(dt/tau_k), phi(x) = (1 - e^-x)/x, prony_recursion's weight [s^-q] (the tangent of the recursion
+  /// below).
   double increment_weight(double dt) const;
   /// Advances the memories of a quantity of dx.size() components (layout: branch k at [k w, (k + 1) w), the spring
   /// after the last branch; `memory_size(w)` doubles in `old_memory` and `new_memory`, which may be the same) by an
@@ -57,8 +58,5 @@ class SpringPotBank {
   double q_, eta_ = 0.0, kappa_ = 0.0;
   std::vector<double> tau_, m_;
 };
-
-/// phi(x) = (1 - e^-x)/x, 1 at x = 0 (the average of e^-s over s in [0, x]).
-double relaxation_average(double x);
 
 }  // namespace cushion::material
