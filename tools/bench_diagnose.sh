@@ -13,7 +13,8 @@
 #        that what that refit leaves of it is 14-36x noise, i.e. visible in these tests by a measure independent of
 #        cushion), REUSE (1: keep OUT/campaigns when it holds an index.csv made with the same generator options,
 #        instead of generating them again; the generator is deterministic, so this only saves its time, about 8 min
-#        with BASE_REFIT=scale)
+#        with BASE_REFIT=scale), BUILD (the CMake build folder whose cushion and generator run, default build; another
+#        lets a benchmark of one code run while the default folder is rebuilt)
 #
 # The campaigns come from build/tests/foreign_campaigns (tests/foreign: a 1D test machine with its own
 # foam and effect forms, independent of cushion's material/ and calibration/). Each is run through the
@@ -42,9 +43,10 @@ GENERATOR_ARGS=${GENERATOR_ARGS:-}
 BASE_REFIT=${BASE_REFIT:-none}
 (( JOBS >= 1 && JOBS <= 2 )) || { echo "JOBS must be 1 or 2 (2 cores)" >&2; exit 2; }
 
-nice -n 5 cmake --build build --target cushion foreign_campaigns -j2 >/dev/null
-CUSHION=$PWD/build/tools/cushion
-GENERATOR=$PWD/build/tests/foreign_campaigns
+BUILD=${BUILD:-build}
+nice -n 5 cmake --build "$BUILD" --target cushion foreign_campaigns -j2 >/dev/null
+CUSHION=$PWD/$BUILD/tools/cushion
+GENERATOR=$PWD/$BUILD/tests/foreign_campaigns
 mkdir -p "$OUT"
 OUT=$(cd "$OUT" && pwd)
 generator_options="--count $N --seed $SEED --pairs $PAIRS --controls $CONTROLS --dynamic-noise $DYNAMIC_NOISE --protocol $PROTOCOL --base-refit $BASE_REFIT $GENERATOR_ARGS"
