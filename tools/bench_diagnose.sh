@@ -16,7 +16,7 @@
 #        with BASE_REFIT=scale), BUILD (the CMake build folder whose cushion and generator run, default build; another
 #        lets a benchmark of one code run while the default folder is rebuilt)
 #
-# The campaigns come from build/tests/foreign_campaigns (tests/foreign: a 1D test machine with its own
+# The campaigns come from $BUILD/tests/foreign_campaigns (tests/foreign: a 1D test machine with its own
 # foam and effect forms, independent of cushion's material/ and calibration/). Each is run through the
 # BLIND user path of cushion from raw data: `cushion diagnose CAMP/campaign.json -o CAMP/diag` (fit included, every
 # candidate fitted jointly with the base); truth.json is
@@ -44,9 +44,11 @@ BASE_REFIT=${BASE_REFIT:-none}
 (( JOBS >= 1 && JOBS <= 2 )) || { echo "JOBS must be 1 or 2 (2 cores)" >&2; exit 2; }
 
 BUILD=${BUILD:-build}
+[[ -f $BUILD/CMakeCache.txt ]] || { echo "BUILD=$BUILD: not a configured CMake build folder (no CMakeCache.txt)" >&2; exit 2; }
+BUILD=$(cd "$BUILD" && pwd)
 nice -n 5 cmake --build "$BUILD" --target cushion foreign_campaigns -j2 >/dev/null
-CUSHION=$PWD/$BUILD/tools/cushion
-GENERATOR=$PWD/$BUILD/tests/foreign_campaigns
+CUSHION=$BUILD/tools/cushion
+GENERATOR=$BUILD/tests/foreign_campaigns
 mkdir -p "$OUT"
 OUT=$(cd "$OUT" && pwd)
 generator_options="--count $N --seed $SEED --pairs $PAIRS --controls $CONTROLS --dynamic-noise $DYNAMIC_NOISE --protocol $PROTOCOL --base-refit $BASE_REFIT $GENERATOR_ARGS"
