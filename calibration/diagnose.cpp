@@ -976,7 +976,9 @@ std::vector<std::size_t> best_first(const std::vector<CandidateFit>& fits) {
 /// The singles to combine in pairs, best dBIC first: the `pairs_from` best converged ones with dBIC > strong_evidence,
 /// none when the best single already brings every test to the noise level (nothing left for a second effect). A single
 /// that explains nothing on its own (dBIC 0 to 10) was never part of a right pair: bench seed 2025, three such pairs of
-/// 60 campaigns, 5-12 s each, none right.
+/// 60 campaigns, 5-12 s each, none right. One that explains less alone than two others may still be the second
+/// family: seed c001 (Qi-Boyce-like Mullins + exponential strain-dependent Prony), strain-dependent Prony 4th at dBIC 31.7
+/// (docs/physics.md 9.15).
 std::vector<std::size_t> pair_sources(const std::vector<CandidateFit>& fits, const DiagnoseOptions& options) {
   const std::vector<std::size_t> order = best_first(fits);
   std::vector<std::size_t> top;
