@@ -116,9 +116,10 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
   sub->add_option("--pairs-from", opt->options.pairs_from,
                   "pairs are the best single with each of the next N - 1 singles that beat the baseline by dBIC 10 "
                   "(default " +
-                      std::to_string(cushion::calibration::DiagnoseOptions{}.pairs_from) +
-                      "; 1: no pairs; 5: the best single with every other family)")
-      ->check(CLI::Range(1, 5));
+                      std::to_string(cushion::calibration::DiagnoseOptions{}.pairs_from) + "; 1: no pairs; " +
+                      std::to_string(cushion::material::effect_catalog().size()) +
+                      ": the best single with every other family of the catalogue)")
+      ->check(CLI::Range(1, static_cast<int>(cushion::material::effect_catalog().size())));
   sub->add_flag("--held-out", opt->held_out,
                 "name an effect only if it also predicts each test left out of its fit better than the base refit "
                 "(leave one test out; slower; off by default: with five tests of different kinds it vetoed the right "
