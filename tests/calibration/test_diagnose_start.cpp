@@ -263,7 +263,10 @@ TEST(DiagnoseStart, ExponentialDamageIsNamedMullinsFromItsStrainStart) {
   // Mullins first: since Mullins' relaxation share composes with strain-dependent Prony (docs/physics.md 5.2) the
   // pair Mullins + strain-dependent Prony beats the single by dBIC 27 here (a second family the truth does not have;
   // docs/physics.md 9.10), but it explains only 9-11 % of the chi2 Mullins leaves, and a pair must explain 25 % (9.13).
-  const nlohmann::json d = cushion::foreign_program::diagnose_raw(c.dir, "");
+  // The candidates are Mullins, friction (named before the strain start) and strain-dependent Prony (the spurious pair);
+  // the benchmark (tools/bench_diagnose.sh) ranks all five families, here they would only add 40 s of CI time.
+  const nlohmann::json d =
+      cushion::foreign_program::diagnose_raw(c.dir, "--candidates mullins,friction,strain_dependent_prony");
   ASSERT_EQ(d.at("winner").get<std::string>().rfind("mullins", 0), 0u) << d.at("verdict");
   for (const auto& t : d.at("candidates").at(0).at("compare").at("tests"))
     EXPECT_LT(t.at("error_over_noise").get<double>(), 2.0) << t.at("name");
@@ -275,7 +278,8 @@ TEST(DiagnoseStart, QiBoyceLikeSofteningIsNamedMullinsFirstFromItsStrainStart) {
   const BenchCampaign c = bench_campaign("diagnose_mullins_qi_boyce", "c052", "--base-refit scale");
   ASSERT_EQ(c.truth.at("forms").at(0).get<std::string>(), "qi_boyce_like") << "the generator's mix changed";
 
-  const nlohmann::json d = cushion::foreign_program::diagnose_raw(c.dir, "");
+  // Mullins against friction, the family named first before the strain start (the other three trail by dBIC 2.4e4).
+  const nlohmann::json d = cushion::foreign_program::diagnose_raw(c.dir, "--candidates mullins,friction");
   ASSERT_EQ(d.at("winner").get<std::string>().rfind("mullins", 0), 0u) << d.at("verdict");
   EXPECT_GT(mullins_in_fragment(d).at("strain_scale").get<double>(), 0.0);
   fs::remove_all(c.set);
