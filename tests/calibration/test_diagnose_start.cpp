@@ -264,7 +264,7 @@ TEST(DiagnoseStart, ExponentialDamageIsNamedMullinsFromItsStrainStart) {
   // pair Mullins + strain-dependent Prony beats the single by dBIC 27 here (a second family the truth does not have;
   // docs/physics.md 9.10), but it explains only 9-11 % of the chi2 Mullins leaves, and a pair must explain 25 % (9.13).
   // The candidates are Mullins, friction (named before the strain start) and strain-dependent Prony (the spurious pair);
-  // the benchmark (tools/bench_diagnose.sh) ranks all five families, here they would only add 40 s of CI time.
+  // the benchmark (tools/bench_diagnose.sh) ranks all five families (docs/ci_time.md: what the other two cost here).
   const nlohmann::json d =
       cushion::foreign_program::diagnose_raw(c.dir, "--candidates mullins,friction,strain_dependent_prony");
   ASSERT_EQ(d.at("winner").get<std::string>().rfind("mullins", 0), 0u) << d.at("verdict");
@@ -278,7 +278,7 @@ TEST(DiagnoseStart, QiBoyceLikeSofteningIsNamedMullinsFirstFromItsStrainStart) {
   const BenchCampaign c = bench_campaign("diagnose_mullins_qi_boyce", "c052", "--base-refit scale");
   ASSERT_EQ(c.truth.at("forms").at(0).get<std::string>(), "qi_boyce_like") << "the generator's mix changed";
 
-  // Mullins against friction, the family named first before the strain start (the other three trail by dBIC 2.4e4).
+  // Mullins against friction, the family named first before the strain start (the other three trail the polished Mullins by more than dBIC 2.3e4, 2026-12-03).
   const nlohmann::json d = cushion::foreign_program::diagnose_raw(c.dir, "--candidates mullins,friction");
   ASSERT_EQ(d.at("winner").get<std::string>().rfind("mullins", 0), 0u) << d.at("verdict");
   EXPECT_GT(mullins_in_fragment(d).at("strain_scale").get<double>(), 0.0);
