@@ -14,7 +14,10 @@
 #        cushion), REUSE (1: keep OUT/campaigns when it holds an index.csv made with the same generator options,
 #        instead of generating them again; the generator is deterministic, so this only saves its time, about 8 min
 #        with BASE_REFIT=scale), BUILD (the CMake build folder whose cushion and generator run, default build; another
-#        lets a benchmark of one code run while the default folder is rebuilt)
+#        lets a benchmark of one code run while the default folder is rebuilt), ONLY (with REUSE=1: a space-separated
+#        list of campaigns, e.g. "c001 c014", diagnosed (again) alone; the others keep the diagnosis of the earlier run
+#        in OUT, if any, so use it only when the code of cushion did not change since then: to finish an interrupted
+#        run, or to run the pairs first; the summary leaves out and lists the campaigns not diagnosed yet)
 #
 # The campaigns come from $BUILD/tests/foreign_campaigns (tests/foreign: a 1D test machine with its own
 # foam and effect forms, independent of cushion's material/ and calibration/). Each is run through the
@@ -54,7 +57,13 @@ OUT=$(cd "$OUT" && pwd)
 generator_options="--count $N --seed $SEED --pairs $PAIRS --controls $CONTROLS --dynamic-noise $DYNAMIC_NOISE --protocol $PROTOCOL --base-refit $BASE_REFIT $GENERATOR_ARGS"
 if [[ ${REUSE:-0} == 1 && -f $OUT/campaigns/index.csv && "$(cat "$OUT/generator_options.txt" 2>/dev/null)" == "$generator_options" ]]; then
   echo "bench_diagnose: reusing the $N campaigns in $OUT/campaigns (same generator options)"
-  rm -rf "$OUT"/campaigns/c[0-9]*/diag "$OUT"/campaigns/c[0-9]*/diag.log "$OUT"/campaigns/c[0-9]*/bench_status.txt
+  for c in ${ONLY:-}; do [[ -f $OUT/campaigns/$c/campaign.json ]] ||
+    { echo "ONLY: $c is not a campaign of $OUT/campaigns" >&2; exit 2; }; done
+  if [[ -n ${ONLY:-} ]]; then rerun=(); for c in $ONLY; do rerun+=("$OUT/campaigns/$c"); done
+  else rerun=("$OUT"/campaigns/c[0-9]*); fi
+  for c in "${rerun[@]}"; do rm -rf "$c/diag" "$c/diag.log" "$c/bench_status.txt"; done
+elif [[ -n ${ONLY:-} ]]; then
+  echo "ONLY needs REUSE=1 and the campaigns of an earlier run with the same generator options in $OUT" >&2; exit 2
 else
   rm -rf "$OUT/campaigns" "$OUT/generator_options.txt"
   echo "bench_diagnose: generating $N campaigns (seed $SEED, $PAIRS pairs, $CONTROLS controls) in $OUT/campaigns"
@@ -81,8 +90,9 @@ run_one() {
 export -f run_one
 export DIAGNOSE_ARGS
 start=$(date +%s)
-ls -d "$OUT"/campaigns/c[0-9]* | xargs -P "$JOBS" -I{} bash -c 'run_one "$@"' _ {} "$CUSHION" "$THREADS"
-echo "bench_diagnose: wall time $(( $(date +%s) - start )) s for $N campaigns, $JOBS at a time"
+# shellcheck disable=SC2086  # ONLY: words
+(if [[ -n ${ONLY:-} ]]; then printf "$OUT/campaigns/%s\n" $ONLY; else ls -d "$OUT"/campaigns/c[0-9]*; fi) | xargs -P "$JOBS" -I{} bash -c 'run_one "$@"' _ {} "$CUSHION" "$THREADS"
+echo "bench_diagnose: wall time $(( $(date +%s) - start )) s for ${ONLY:+the campaigns }${ONLY:-$N campaigns}, $JOBS at a time"
 
 python3 - "$OUT" "$SEED" "$JOBS" "$THREADS" <<'PY'
 import csv, json, os, statistics, sys
@@ -112,9 +122,12 @@ def verdict_of(camp):
         return ["diagnose-failed"], baseline, None, seconds, []
     return ["base"], baseline, None, seconds, []
 
-rows = []
+rows, undiagnosed = [], []
 for line in csv.DictReader(open(os.path.join(out, "campaigns", "index.csv"))):
     camp = os.path.join(out, "campaigns", line["campaign"])
+    if not os.path.exists(os.path.join(camp, "bench_status.txt")):  # ONLY: not run yet
+        undiagnosed.append(line["campaign"])
+        continue
     truth = json.load(open(os.path.join(camp, "truth.json")))
     true = truth["families"]
     label = "control" if not true else "+".join(true)
@@ -163,6 +176,8 @@ lines = []
 p = lines.append
 p(f"cushion diagnose benchmark on foreign campaigns: N = {len(rows)} (seed {seed}; diagnose from raw data: fit + joint candidates, "
   f"{jobs} campaigns at a time, --threads {threads})")
+if undiagnosed:
+    p(f"NOT diagnosed yet, left out of every figure below: {len(undiagnosed)} campaigns ({' '.join(undiagnosed)})")
 p("")
 p("Confusion matrix (rows: truth; columns: verdict; a pair verdict counts in both of its families' columns):")
 short = {"pneumatic": "pneum", "friction": "frict", "mullins": "mull", "stiffness_damping": "stiffd",

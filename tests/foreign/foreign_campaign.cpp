@@ -208,15 +208,20 @@ CampaignTruth draw_truth(const std::string& name, const CampaignKind& kind, std:
     const double target = random.log_uniform(14.0, 36.0);
     EffectSpec effect;
     bool beyond_refit = refit == BaseRefitUse::scale;
-    for (int draw = 0;; ++draw) {  // scale: a shape whose refit-proof part cannot reach the target is drawn again
+    std::map<std::string, double> failed_shape;  // the last shape whose refit-proof part could not reach the target
+    for (int draw = 0;; ++draw) {                // scale: such a shape is drawn again
+      const EffectSpec shape = draw_effect_shape(form, truth.base, random);
+      // A form with no random shape parameter (stiffness-proportional damping, the power-law and exponential
+      // strain-dependent Prony) draws the same shape again: what failed once would fail again, at the same cost.
+      if (beyond_refit && shape.parameters == failed_shape) beyond_refit = false;
       try {
-        effect = beyond_refit
-                     ? scale_effect_beyond_base_refit(draw_effect_shape(form, truth.base, random), truth.base, plan, target)
-                     : scale_effect(draw_effect_shape(form, truth.base, random), truth.base, plan, target);
+        effect = beyond_refit ? scale_effect_beyond_base_refit(shape, truth.base, plan, target)
+                              : scale_effect(shape, truth.base, plan, target);
         break;
       } catch (const std::runtime_error&) {
         if (!beyond_refit) throw;
-        if (draw == 3) beyond_refit = false;  // then sized against the true base, as without --base-refit
+        failed_shape = shape.parameters;
+        if (draw + 1 == shape_draws_beyond_base_refit) beyond_refit = false;  // then sized against the true base
       }
     }
     truth.sized_by[effect.family] = beyond_refit ? "what a refitted base leaves" : "the true base";
@@ -393,6 +398,11 @@ void write_campaign_set(const fs::path& dir, int count, int pairs, int controls,
     for (const auto& [family, ratios] : truth.effect_over_noise) log << ", " << family << " " << largest(ratios) << "x noise";
     if (!truth.all_effects_after_base_refit.empty())
       log << ", " << largest(truth.all_effects_after_base_refit) << "x after a base refit";
+    if (refit == BaseRefitUse::scale)
+      for (const auto& [family, sized_by] : truth.sized_by)
+        if (sized_by == "the true base")
+          log << " (" << family
+              << " sized against the true base: no shape drawn reached the target beyond a base refit)";
     log << " (" << seconds << " s)\n";
   }
   if (!index) throw std::runtime_error("error writing " + (dir / "index.csv").string());

@@ -61,6 +61,11 @@ EffectSpec scale_effect(EffectSpec shape, const BaseFoam& foam, const TestPlan& 
 /// Throws when the range cannot reach it, or only with an effect beyond largest_effect_over_noise against the true base
 /// (an effect larger than the foam's own response, 0.5 % noise: not a seat foam).
 constexpr double largest_effect_over_noise = 200.0;
+/// Shapes drawn for an effect under --base-refit scale before it is sized against the true base instead (one only for a
+/// form with no random shape parameter: each draw is the same shape). More do not help: with 16, 13 of the 14 effects of
+/// the scale set (seed 2025) that fell back after 4 still did (11 of them such forms; of the three others two were
+/// sized beyond the refit), and a campaign took 255-478 s to generate against 40-86 s (docs/physics.md 9.17).
+constexpr int shape_draws_beyond_base_refit = 4;
 EffectSpec scale_effect_beyond_base_refit(EffectSpec shape, const BaseFoam& foam, const TestPlan& plan, double target);
 
 /// What the generator says of each effect besides its size against the true base (--base-refit):
@@ -68,8 +73,8 @@ EffectSpec scale_effect_beyond_base_refit(EffectSpec shape, const BaseFoam& foam
 ///   report  truth.json also records what a refitted base of the generator's own family leaves of each effect and
 ///           of all of them together ("after_base_refit"), the effects scaled as before;
 ///   scale   each effect scaled so that what the refitted base leaves of it is 14-36 x noise (a shape that cannot
-///           reach that is drawn again, 4 draws in all; then the effect is sized against the true base as without
-///           refit, and truth.json says so in "sized_against"), and reported as with report.
+///           reach that is drawn again, up to shape_draws_beyond_base_refit draws; then the effect is sized against
+///           the true base as without refit, and truth.json says so in "sized_against"), and reported as with report.
 enum class BaseRefitUse { none, report, scale };
 
 struct CampaignKind {

@@ -10,6 +10,7 @@
 #include <iterator>
 #include <map>
 #include <numbers>
+#include <set>
 
 #include "foreign_campaign.hpp"
 
@@ -189,6 +190,24 @@ TEST(ForeignCampaign, ScaledBeyondTheBaseRefitAnAbsorbedMullinsFormIsLeftAt10To5
   EXPECT_LE(left, 50.0);
   EXPECT_GT(largest(truth.effect_over_noise.at("mullins")), 2.0 * left);
   EXPECT_NEAR(largest(truth.all_effects_after_base_refit), left, 1e-9 * left);
+}
+
+TEST(ForeignCampaign, OnlyFormsWithoutARandomShapeParameterDrawTheSameShapeTwice) {
+  // draw_truth stops redrawing a shape the base refit absorbs when the next draw is the same shape (docs/physics.md
+  // 9.17): that must happen exactly for the forms whose only parameter is the magnitude, never for a form with a
+  // random shape parameter, which would then lose its redraws.
+  const BaseFoam foam = sample_foam("soft_plateau_50", 5);
+  std::set<std::string> repeating;
+  for (const auto& form : effect_forms()) {
+    Random random(23);
+    const EffectSpec first = draw_effect_shape(form, foam, random);
+    if (draw_effect_shape(form, foam, random).parameters == first.parameters)
+      repeating.insert(form.family + "/" + form.form);
+  }
+  const std::set<std::string> without_shape{"stiffness_damping/stiffness_proportional",
+                                            "stiffness_damping/secant_proportional", "strain_dependent_prony/power_law",
+                                            "strain_dependent_prony/exponential"};
+  EXPECT_EQ(repeating, without_shape);
 }
 
 TEST(ForeignCampaign, MixIsBalancedAndDeterministic) {
