@@ -55,12 +55,13 @@ GENERATOR=$BUILD/tests/foreign_campaigns
 mkdir -p "$OUT"
 OUT=$(cd "$OUT" && pwd)
 generator_options="--count $N --seed $SEED --pairs $PAIRS --controls $CONTROLS --dynamic-noise $DYNAMIC_NOISE --protocol $PROTOCOL --base-refit $BASE_REFIT $GENERATOR_ARGS"
+rerun=()  # the campaigns to diagnose: ONLY's, else all of them
+for c in ${ONLY:-}; do rerun+=("$OUT/campaigns/$c"); done
 if [[ ${REUSE:-0} == 1 && -f $OUT/campaigns/index.csv && "$(cat "$OUT/generator_options.txt" 2>/dev/null)" == "$generator_options" ]]; then
   echo "bench_diagnose: reusing the $N campaigns in $OUT/campaigns (same generator options)"
-  for c in ${ONLY:-}; do [[ -f $OUT/campaigns/$c/campaign.json ]] ||
-    { echo "ONLY: $c is not a campaign of $OUT/campaigns" >&2; exit 2; }; done
-  if [[ -n ${ONLY:-} ]]; then rerun=(); for c in $ONLY; do rerun+=("$OUT/campaigns/$c"); done
-  else rerun=("$OUT"/campaigns/c[0-9]*); fi
+  for c in "${rerun[@]}"; do [[ -f $c/campaign.json ]] ||
+    { echo "ONLY: $(basename "$c") is not a campaign of $OUT/campaigns" >&2; exit 2; }; done
+  (( ${#rerun[@]} )) || rerun=("$OUT"/campaigns/c[0-9]*)
   for c in "${rerun[@]}"; do rm -rf "$c/diag" "$c/diag.log" "$c/bench_status.txt"; done
 elif [[ -n ${ONLY:-} ]]; then
   echo "ONLY needs REUSE=1 and the campaigns of an earlier run with the same generator options in $OUT" >&2; exit 2
@@ -70,6 +71,7 @@ else
   # shellcheck disable=SC2086  # generator_options: words
   "$GENERATOR" --out "$OUT/campaigns" $generator_options > "$OUT/generator.log"
   echo "$generator_options" > "$OUT/generator_options.txt"
+  rerun=("$OUT"/campaigns/c[0-9]*)
 fi
 
 # One campaign: `cushion diagnose CAMP/campaign.json` (no material: the base is fitted first into CAMP/diag/fit,
@@ -90,8 +92,7 @@ run_one() {
 export -f run_one
 export DIAGNOSE_ARGS
 start=$(date +%s)
-# shellcheck disable=SC2086  # ONLY: words
-(if [[ -n ${ONLY:-} ]]; then printf "$OUT/campaigns/%s\n" $ONLY; else ls -d "$OUT"/campaigns/c[0-9]*; fi) | xargs -P "$JOBS" -I{} bash -c 'run_one "$@"' _ {} "$CUSHION" "$THREADS"
+printf '%s\n' "${rerun[@]}" | xargs -P "$JOBS" -I{} bash -c 'run_one "$@"' _ {} "$CUSHION" "$THREADS"
 echo "bench_diagnose: wall time $(( $(date +%s) - start )) s for ${ONLY:+the campaigns }${ONLY:-$N campaigns}, $JOBS at a time"
 
 python3 - "$OUT" "$SEED" "$JOBS" "$THREADS" <<'PY'

@@ -278,7 +278,8 @@ TEST(DiagnoseStart, QiBoyceLikeSofteningIsNamedMullinsFirstFromItsStrainStart) {
   const BenchCampaign c = bench_campaign("diagnose_mullins_qi_boyce", "c052", "--base-refit scale");
   ASSERT_EQ(c.truth.at("forms").at(0).get<std::string>(), "qi_boyce_like") << "the generator's mix changed";
 
-  // Mullins against friction, the family named first before the strain start (the other three trail the polished Mullins by more than dBIC 2.3e4, 2026-12-03).
+  // Mullins against friction, the family named first before the strain start (the other three trail the polished
+  // Mullins by more than dBIC 2.3e4, 2026-12-03).
   const nlohmann::json d = cushion::foreign_program::diagnose_raw(c.dir, "--candidates mullins,friction");
   ASSERT_EQ(d.at("winner").get<std::string>().rfind("mullins", 0), 0u) << d.at("verdict");
   EXPECT_GT(mullins_in_fragment(d).at("strain_scale").get<double>(), 0.0);

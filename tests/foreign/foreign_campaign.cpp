@@ -224,7 +224,7 @@ CampaignTruth draw_truth(const std::string& name, const CampaignKind& kind, std:
         if (draw + 1 == shape_draws_beyond_base_refit) beyond_refit = false;  // then sized against the true base
       }
     }
-    truth.sized_by[effect.family] = beyond_refit ? "what a refitted base leaves" : "the true base";
+    truth.sized_by[effect.family] = beyond_refit ? sized_by_base_refit : sized_by_true_base;
     truth.effect_over_noise[effect.family] = effect_over_noise(truth.base, {effect}, plan);
     if (refit != BaseRefitUse::none)
       truth.effect_after_base_refit[effect.family] = refit_base(truth.base, {effect}, plan).ratio_after;
@@ -400,7 +400,7 @@ void write_campaign_set(const fs::path& dir, int count, int pairs, int controls,
       log << ", " << largest(truth.all_effects_after_base_refit) << "x after a base refit";
     if (refit == BaseRefitUse::scale)
       for (const auto& [family, sized_by] : truth.sized_by)
-        if (sized_by == "the true base")
+        if (sized_by == sized_by_true_base)
           log << " (" << family
               << " sized against the true base: no shape drawn reached the target beyond a base refit)";
     log << " (" << seconds << " s)\n";

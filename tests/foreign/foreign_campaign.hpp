@@ -61,9 +61,9 @@ EffectSpec scale_effect(EffectSpec shape, const BaseFoam& foam, const TestPlan& 
 /// Throws when the range cannot reach it, or only with an effect beyond largest_effect_over_noise against the true base
 /// (an effect larger than the foam's own response, 0.5 % noise: not a seat foam).
 constexpr double largest_effect_over_noise = 200.0;
-/// Shapes drawn for an effect under --base-refit scale before it is sized against the true base instead (one only for a
-/// form with no random shape parameter: each draw is the same shape). More do not help: with 16, 13 of the 14 effects of
-/// the scale set (seed 2025) that fell back after 4 still did (11 of them such forms; of the three others two were
+/// Shapes drawn for an effect under --base-refit scale before it is sized against the true base instead (one only for
+/// a form with no random shape parameter: each draw is the same shape). More do not help: with 16, 13 of the 14 effects
+/// of the scale set (seed 2025) that fell back after 4 still did (11 of them such forms; of the three others two were
 /// sized beyond the refit), and a campaign took 255-478 s to generate against 40-86 s (docs/physics.md 9.17).
 constexpr int shape_draws_beyond_base_refit = 4;
 EffectSpec scale_effect_beyond_base_refit(EffectSpec shape, const BaseFoam& foam, const TestPlan& plan, double target);
@@ -76,6 +76,10 @@ EffectSpec scale_effect_beyond_base_refit(EffectSpec shape, const BaseFoam& foam
 ///           reach that is drawn again, up to shape_draws_beyond_base_refit draws; then the effect is sized against
 ///           the true base as without refit, and truth.json says so in "sized_against"), and reported as with report.
 enum class BaseRefitUse { none, report, scale };
+
+/// The values of CampaignTruth::sized_by (and of truth.json's "sized_against").
+inline constexpr const char* sized_by_true_base = "the true base";
+inline constexpr const char* sized_by_base_refit = "what a refitted base leaves";
 
 struct CampaignKind {
   std::vector<std::string> families, forms;  ///< empty: control
@@ -92,7 +96,8 @@ struct CampaignTruth {
   /// test -> what it leaves of all the effects together (empty otherwise).
   std::map<std::string, std::map<std::string, double>> effect_after_base_refit;
   std::map<std::string, double> all_effects_after_base_refit;
-  std::map<std::string, std::string> sized_by;  ///< family -> what its size was measured against (with BaseRefitUse)
+  std::map<std::string, std::string> sized_by;  ///< family -> what its size was measured against (with BaseRefitUse):
+                                                ///< sized_by_true_base or sized_by_base_refit
 };
 
 /// Seeded truth of a kind: base family drawn, each effect drawn and scaled alone to a target

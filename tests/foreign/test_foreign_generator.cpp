@@ -184,7 +184,7 @@ TEST(ForeignCampaign, ScaledBeyondTheBaseRefitAnAbsorbedMullinsFormIsLeftAt10To5
   const TestPlan plan = standard_plan();
   const CampaignTruth truth =
       draw_truth("t", {{"mullins"}, {"ogden_roxburgh"}}, mix_seed(2025, 2), plan, BaseRefitUse::scale);
-  ASSERT_EQ(truth.sized_by.at("mullins"), "what a refitted base leaves");
+  ASSERT_EQ(truth.sized_by.at("mullins"), sized_by_base_refit);
   const double left = largest(truth.effect_after_base_refit.at("mullins"));
   EXPECT_GE(left, 10.0);
   EXPECT_LE(left, 50.0);
