@@ -1059,11 +1059,11 @@ std::vector<CandidateFit> fit_pairs(const CandidateJobs& c, const std::vector<Ca
         << " alone: fitted again from both single fits without a scan: dBIC " << fmt(scanned.delta_bic, 4) << " -> "
         << fmt(sum.delta_bic, 4) << ", " << sum.evaluations << " runs, " << fmt(sum.seconds, 2) << " s"
         << (sum.converged ? "" : " (failed: " + sum.message + ")") << "\n";
-    const bool sum_better = sum.converged && (!scanned.converged || sum.bic < scanned.bic);
-    CandidateFit& kept = sum_better ? sum : scanned;
-    kept.evaluations = scanned.evaluations + sum.evaluations;
-    kept.seconds = scanned.seconds + sum.seconds;
-    if (sum_better) scanned = std::move(sum);
+    const int runs = scanned.evaluations + sum.evaluations;  // the kept fit reports both fits' cost
+    const double seconds = scanned.seconds + sum.seconds;
+    if (sum.converged && (!scanned.converged || sum.bic < scanned.bic)) scanned = std::move(sum);
+    scanned.evaluations = runs;
+    scanned.seconds = seconds;
   }
   for (const auto& f : pairs) log_fit(log, f, false);
   return pairs;

@@ -34,7 +34,8 @@
 ///     next `pairs_from` - 1, started from their single fits (the best single's base), the start scan over the added
 ///     effect's parameters only (the best single's effect held at its fit); a joint pair that ends no better than the
 ///     best single alone is fitted again from the plain sum without a scan, the lower BIC kept (docs/physics.md 9.19);
-///     a pair started from a polished single counts the parameters its polish added. A pair must also explain pair_share of the chi2 the single leaves.
+///     a pair started from a polished single counts the parameters its polish added. A pair must also explain
+///     pair_share of the chi2 the single leaves.
 ///  4. Penalised figure: BIC = chi2 + k ln N (chi2: sum of squared noise-normalised residuals, N their
 ///     number, k the fitted parameters); dBIC = BIC_baseline - BIC_candidate (> 0: better). A candidate
 ///     is SUPPORTED when dBIC > strong_evidence (Kass & Raftery: > 10 is very strong) AND it beats by
