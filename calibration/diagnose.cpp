@@ -16,6 +16,7 @@
 
 #include "calibration/ceres_options.hpp"
 #include "calibration/parallel_jobs.hpp"
+#include "calibration/recent_runs.hpp"
 #include "io/input_error.hpp"
 #include "io/text_support.hpp"
 #include "material/effect_catalog.hpp"
@@ -201,19 +202,15 @@ class CandidateModel {
   /// Comparison at u; nullopt when the material cannot be built or a test run fails.
   /// u is clamped to the bounds first: a forward difference taken at a bound steps outside it (Ceres' numeric
   /// differentiation does not know the bounds), where the material may reject the value (a share above 1).
+  /// A point among the last few run is answered from them, bit for bit (recent_runs.hpp, docs/physics.md 9.20).
   std::optional<CompareResult> compare_at(const double* u) const {
-    ++evaluations_;
     std::vector<double> inside(u, u + free_.size());
     for (std::size_t i = 0; i < free_.size(); ++i) inside[i] = std::clamp(inside[i], free_[i].lower, free_[i].upper);
-    try {
-      const material::MaterialDefinition def = material::build_material(spec_at(inside.data()), "candidate");
-      CompareResult r = compare_campaign(*def.model, campaign_, options_.compare, noise_);
-      for (const auto& t : r.tests)
-        if (!t.failure.empty()) return std::nullopt;
-      return r;
-    } catch (const std::exception&) {
-      return std::nullopt;
-    }
+    if (auto known = recent_.find(inside)) return *known;
+    ++evaluations_;
+    std::optional<CompareResult> r = run_at(inside);
+    recent_.keep(std::move(inside), r);
+    return r;
   }
   double chi2_at(const double* u) const {
     const auto r = compare_at(u);
@@ -228,9 +225,23 @@ class CandidateModel {
     std::copy(v.begin(), v.end(), out);
     return true;
   }
+  /// Model runs made (a point answered from the recent runs is not one).
   int evaluations() const { return evaluations_; }
 
  private:
+  /// The model run at u (inside the bounds): nullopt when the material cannot be built or a test run fails.
+  std::optional<CompareResult> run_at(const std::vector<double>& u) const {
+    try {
+      const material::MaterialDefinition def = material::build_material(spec_at(u.data()), "candidate");
+      CompareResult r = compare_campaign(*def.model, campaign_, options_.compare, noise_);
+      for (const auto& t : r.tests)
+        if (!t.failure.empty()) return std::nullopt;
+      return r;
+    } catch (const std::exception&) {
+      return std::nullopt;
+    }
+  }
+
   material::MaterialSpec base_;
   std::vector<material::EffectSpec> effects_;
   const Campaign& campaign_;
@@ -238,6 +249,7 @@ class CandidateModel {
   const DiagnoseOptions& options_;
   std::vector<FreeParameter> free_;
   mutable std::atomic<int> evaluations_{0};
+  mutable RecentRuns<CompareResult> recent_;
 };
 
 /// How a candidate's start is searched before Levenberg-Marquardt.
