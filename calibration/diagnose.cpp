@@ -15,6 +15,7 @@
 #include <Eigen/Dense>
 
 #include "calibration/ceres_options.hpp"
+#include "calibration/early_stop.hpp"
 #include "calibration/parallel_jobs.hpp"
 #include "calibration/recent_runs.hpp"
 #include "io/input_error.hpp"
@@ -493,7 +494,7 @@ class BestPoint {
 /// ranked at its start. Ceres' own update_state_every_iteration does not do this: with it the same fit still ended at
 /// its start (measured 2026-11-27).
 ceres::Solver::Summary minimise(const CandidateModel& model, std::vector<double>& u, std::size_t n_residuals,
-                                int max_iterations, SpareCores* spare) {
+                                int max_iterations, SpareCores* spare, const EarlyStop& stop) {
   ceres::Problem problem;
   BestPoint best;
   const std::size_t n = u.size();
@@ -518,6 +519,8 @@ ceres::Solver::Summary minimise(const CandidateModel& model, std::vector<double>
   so.function_tolerance = 1e-6;
   so.parameter_tolerance = 1e-6;
   so.logging_type = ceres::SILENT;
+  EarlyStopCallback stop_callback(stop);
+  if (stop.active()) so.callbacks.push_back(&stop_callback);
   ceres::Solver::Summary summary;
   ceres::Solve(so, &problem, &summary);
   if (summary.termination_type == ceres::FAILURE && best.cost() < summary.initial_cost) {
@@ -532,7 +535,7 @@ ceres::Solver::Summary minimise(const CandidateModel& model, std::vector<double>
 CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector<material::EffectSpec>& start_effects,
                            const Campaign& campaign, const std::vector<TestNoise>& noise, std::size_t n_residuals,
                            double baseline_bic, const DiagnoseOptions& options, Scan scan, bool refit_base = false,
-                           SpareCores* spare = nullptr) {
+                           SpareCores* spare = nullptr, const EarlyStop& stop = {}) {
   const auto t0 = Clock::now();
   CandidateFit fit;
   for (const auto& e : start_effects) fit.kinds.push_back(e.kind);
@@ -551,7 +554,7 @@ CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector
     u = std::move(s.u);
     if (!std::isfinite(s.chi2)) throw std::runtime_error("the model with this effect fails at every start value tried");
     const std::vector<double> start = u;
-    const ceres::Solver::Summary summary = minimise(model, u, n_residuals, options.max_iterations, spare);
+    const ceres::Solver::Summary summary = minimise(model, u, n_residuals, options.max_iterations, spare, stop);
     // Levenberg-Marquardt stopped where the model run fails close by, after moving: its best point is kept
     const bool stopped_at_failure = summary.termination_type == ceres::FAILURE && u != start;
     fit.converged = summary.IsSolutionUsable() || stopped_at_failure;
@@ -559,6 +562,10 @@ CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector
     if (summary.termination_type == ceres::NO_CONVERGENCE)
       fit.warning = "did not converge within " + std::to_string(options.max_iterations) +
                     " iterations; ranked with the best parameters found (chi2/N may still fall: raise --max-iterations)";
+    if (summary.termination_type == ceres::USER_SUCCESS)
+      fit.warning = "stopped after " + std::to_string(stop.iteration) +
+                    " iterations: its second effect explained too little of the chi2 the best single leaves to reach "
+                    "the pair share by the end (--pair-stop-share)";
     if (stopped_at_failure)
       fit.warning = "Levenberg-Marquardt stopped where the model run fails close by (" + summary.message +
                     "); ranked with the best parameters evaluated";
@@ -1007,11 +1014,19 @@ std::vector<std::size_t> pair_sources(const std::vector<CandidateFit>& fits, con
 /// A joint pair's fit from `base` (the best single's refitted base) with both effects at their single fits' values:
 /// `scan` Scan::added_effect rescans the added effect first, Scan::none starts Levenberg-Marquardt right there.
 std::function<CandidateFit()> joint_pair_job(const CandidateJobs& c, const material::MaterialSpec& base,
-                                             const std::vector<material::EffectSpec>& e, Scan scan) {
-  return [&c, base, e, scan] {
+                                             const std::vector<material::EffectSpec>& e, Scan scan,
+                                             const EarlyStop& stop) {
+  return [&c, base, e, scan, stop] {
     return fit_candidate(base, e, c.campaign, c.d.noise, c.d.residuals, c.d.baseline_bic, c.options, scan, true,
-                         &c.spare);
+                         &c.spare, stop);
   };
+}
+
+/// The early stop of a pair whose best single leaves chi2_single: after pair_stop_iteration iterations, chi2 above
+/// (1 - pair_stop_share) chi2_single (DiagnoseOptions::pair_stop_share; none when it is 0).
+EarlyStop pair_stop(const DiagnoseOptions& o, double chi2_single) {
+  if (o.pair_stop_share <= 0.0 || !std::isfinite(chi2_single)) return {};
+  return {o.pair_stop_iteration, (1.0 - o.pair_stop_share) * chi2_single};
 }
 
 /// Pairs of the best single with each of the next best, started from their single fits (a pair without the best single
@@ -1035,11 +1050,12 @@ std::vector<CandidateFit> fit_pairs(const CandidateJobs& c, const std::vector<Ca
   std::vector<std::vector<material::EffectSpec>> effects;
   std::vector<double> expected_seconds;  // a pair costs about what its two singles cost together
   const CandidateFit* best = top.empty() ? nullptr : &fits[top.front()];
+  const EarlyStop stop = best ? pair_stop(c.options, best->chi2) : EarlyStop{};
   for (std::size_t b = 1; b < top.size(); ++b) {
     expected_seconds.push_back(best->seconds + fits[top[b]].seconds);
     effects.push_back(best->effects);
     effects.back().push_back(fits[top[b]].effects.front());
-    jobs.push_back(joint ? joint_pair_job(c, base_of(*best), effects.back(), Scan::added_effect)
+    jobs.push_back(joint ? joint_pair_job(c, base_of(*best), effects.back(), Scan::added_effect, stop)
                          : c.job(effects.back(), Scan::none, false));
   }
   std::vector<CandidateFit> pairs = run_all(jobs, c.options.threads, expected_seconds, &c.spare);
@@ -1059,7 +1075,7 @@ std::vector<CandidateFit> fit_pairs(const CandidateJobs& c, const std::vector<Ca
     inherit(pairs[i]);
     if (!joint || (pairs[i].converged && pairs[i].delta_bic > best->delta_bic)) continue;
     again.push_back(i);
-    sum_jobs.push_back(joint_pair_job(c, base_of(*best), effects[i], Scan::none));
+    sum_jobs.push_back(joint_pair_job(c, base_of(*best), effects[i], Scan::none, stop));
     sum_seconds.push_back(pairs[i].seconds);
   }
   std::vector<CandidateFit> sums = run_all(sum_jobs, c.options.threads, sum_seconds, &c.spare);

@@ -83,6 +83,12 @@ struct DiagnoseOptions {
   /// the scale set), the right second families 24-89 %: the two overlap, 25 % costs a right pair at 24 %. 0: the dBIC
   /// rule alone.
   double pair_share = 0.25;
+  /// A pair's Levenberg-Marquardt stops after pair_stop_iteration iterations when its second effect then explains less
+  /// than this share of the chi2 the best single leaves (the fit cannot reach pair_share by the end, as measured): on the
+  /// scale set (2026-12-04, docs/physics.md 9.21) no pair fit below 5 % after 4 iterations ended above 23 %, and what
+  /// those fits ran after their 4th iteration was 7 % of the model runs of the 60 diagnoses. 0: never stopped.
+  double pair_stop_share = 0.05;
+  int pair_stop_iteration = 4;
   int threads = 2;
   std::vector<std::string> candidates;  ///< restrict to these kinds (empty: the whole catalogue)
   /// Fit every candidate together with the base-refit factors (log10 factor in [-1, 1] on each hyperfoam mu_i and

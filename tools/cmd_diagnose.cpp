@@ -23,6 +23,13 @@
 
 namespace {
 
+/// A default value for a help text, as std::ostream writes it (0.25, not 0.250000).
+std::string shortest_text(double x) {
+  std::ostringstream o;
+  o << x;
+  return o.str();
+}
+
 /// The base for a campaign given without a material: the `cushion fit` job with diagnose_base_fit_options() (refit on
 /// every test, noise-weighted) into OUT/fit
 /// (OUT prepared already). Returns the path of the material it wrote; throws std::runtime_error (exit 1) when
@@ -106,12 +113,16 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
          "--pair-share", opt->options.pair_share,
          "a pair is named only when its second effect explains at least this share of the chi2 the best single "
          "leaves, besides beating it by dBIC 10 (default " +
-             [] {
-               std::ostringstream o;
-               o << cushion::calibration::DiagnoseOptions{}.pair_share;
-               return o.str();
-             }() +
+             shortest_text(cushion::calibration::DiagnoseOptions{}.pair_share) +
              "; 0: the dBIC rule alone; docs/physics.md 9.13)")
+      ->check(CLI::Range(0.0, 1.0));
+  sub->add_option("--pair-stop-share", opt->options.pair_stop_share,
+                  "a pair's fit stops after " +
+                      std::to_string(cushion::calibration::DiagnoseOptions{}.pair_stop_iteration) +
+                      " iterations when its second effect then explains less than this share of the chi2 the best "
+                      "single leaves (default " +
+                      shortest_text(cushion::calibration::DiagnoseOptions{}.pair_stop_share) +
+                      "; 0: never; docs/physics.md 9.21)")
       ->check(CLI::Range(0.0, 1.0));
   sub->add_option("--pairs-from", opt->options.pairs_from,
                   "pairs are the best single with each of the next N - 1 singles that beat the baseline by dBIC 10 "
