@@ -1043,6 +1043,9 @@ EarlyStop pair_stop(const DiagnoseOptions& o, double chi2_single) {
 /// Levenberg-Marquardt has no gradient left there. Foreign c046 (Jenkins friction + Ogden-Roxburgh Mullins, scale set):
 /// the scan ended with the friction stiffness at 1.1e-3 kPa (single fit 2.69, truth 2.29), dBIC 578 against the
 /// single's 590; from the sum, 675 with every test within 1.16x noise (docs/physics.md 9.19).
+///
+/// Both fits of a pair stop after pair_stop_iteration iterations when the second effect still explains less than
+/// pair_stop_share of the chi2 the best single leaves (pair_stop; a stopped scanned fit is then fitted from the sum).
 std::vector<CandidateFit> fit_pairs(const CandidateJobs& c, const std::vector<CandidateFit>& fits,
                                     const std::vector<std::size_t>& top, std::ostream& log) {
   const bool joint = c.options.joint_base && c.base_ref();
