@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <iostream>
 #include <optional>
-#include <sstream>
 #include <stdexcept>
 
 #include "calibration/campaign.hpp"
@@ -15,6 +14,7 @@
 #include "calibration/diagnose_output.hpp"
 #include "calibration/plot.hpp"
 #include "io/input_error.hpp"
+#include "io/text_support.hpp"
 #include "material/io/material_file.hpp"
 #include "tools/command.hpp"
 #include "tools/fit_job.hpp"
@@ -22,13 +22,6 @@
 #include "tools/gnuplot.hpp"
 
 namespace {
-
-/// A default value for a help text, as std::ostream writes it (0.25, not 0.250000).
-std::string shortest_text(double x) {
-  std::ostringstream o;
-  o << x;
-  return o.str();
-}
 
 /// The base for a campaign given without a material: the `cushion fit` job with diagnose_base_fit_options() (refit on
 /// every test, noise-weighted) into OUT/fit
@@ -113,7 +106,7 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
          "--pair-share", opt->options.pair_share,
          "a pair is named only when its second effect explains at least this share of the chi2 the best single "
          "leaves, besides beating it by dBIC 10 (default " +
-             shortest_text(cushion::calibration::DiagnoseOptions{}.pair_share) +
+             cushion::io::format_double(cushion::calibration::DiagnoseOptions{}.pair_share) +
              "; 0: the dBIC rule alone; docs/physics.md 9.13)")
       ->check(CLI::Range(0.0, 1.0));
   sub->add_option("--pair-stop-share", opt->options.pair_stop_share,
@@ -121,7 +114,7 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
                       std::to_string(cushion::calibration::DiagnoseOptions{}.pair_stop_iteration) +
                       " iterations when its second effect then explains less than this share of the chi2 the best "
                       "single leaves (default " +
-                      shortest_text(cushion::calibration::DiagnoseOptions{}.pair_stop_share) +
+                      cushion::io::format_double(cushion::calibration::DiagnoseOptions{}.pair_stop_share) +
                       "; 0: never; docs/physics.md 9.21)")
       ->check(CLI::Range(0.0, 1.0));
   sub->add_option("--pairs-from", opt->options.pairs_from,
