@@ -148,13 +148,19 @@ const std::vector<Entry>& entries() {
          {"order_reference_frequency_Hz",
           "f_r: frequency at which beta_s is the damping time whatever q (the stress is "
           "beta_s (2 pi f_r)^(1-q) C_d D^q E)",
-          5.0, 0.0, 1e6, true, false, false}},
+          5.0, 0.0, 1e6, true, false, false},
+         {"stretch_exponent",
+          "n: the damping stiffness scales as J^-n with the compression (0: as given; 2: a constant nominal damping "
+          "coefficient in a uniaxial test at nu = 0, where C_d dE/dt gives a nominal stress l^2 C_d de/dt); diagnose "
+          "holds it (fitted, it lost two singles of the scale set; docs/physics.md 9.23)",
+          0.0, -2.0, 4.0, false, false, false}},
         false,
         true},
        [](const BuildContext& c) -> std::shared_ptr<const Material> {
          return std::make_shared<StiffnessDampingEffect>(
              c.inner, c.reference_base, c.value.at("beta_s"), c.value.at("current_tangent_share"),
-             c.value.at("derivative_order"), c.value.at("order_reference_frequency_Hz"));
+             c.value.at("derivative_order"), c.value.at("order_reference_frequency_Hz"),
+             c.value.at("stretch_exponent"));
        }},
   };
   return table;

@@ -23,30 +23,35 @@ SpringPotBank checked_bank(double order) {
 
 StiffnessDampingEffect::StiffnessDampingEffect(std::shared_ptr<const Material> inner,
                                                std::shared_ptr<const Hyperelastic> elastic_base, double beta_s,
-                                               double current_share, double order, double reference_frequency_Hz)
+                                               double current_share, double order, double reference_frequency_Hz,
+                                               double stretch_exponent)
     : StiffnessDampingEffect(std::move(inner), std::move(elastic_base), beta_s, current_share, checked_bank(order),
-                             reference_frequency_Hz) {}
+                             reference_frequency_Hz, stretch_exponent) {}
 
 StiffnessDampingEffect::StiffnessDampingEffect(std::shared_ptr<const Material> inner,
                                                std::shared_ptr<const Hyperelastic> elastic_base, double beta_s,
-                                               double current_share, SpringPotBank bank, double reference_frequency_Hz)
+                                               double current_share, SpringPotBank bank, double reference_frequency_Hz,
+                                               double stretch_exponent)
     : EffectDecorator(std::move(inner), bank.memory_size(6)),
       base_(checked(std::move(elastic_base))),
       C0_(base_->evaluate(Mat3::Identity()).dS_dE),
       beta_(beta_s),
       share_(current_share),
       bank_(std::move(bank)),
-      coefficient_(beta_s * std::pow(2.0 * std::numbers::pi * reference_frequency_Hz, 1.0 - bank_.order())) {
+      coefficient_(beta_s * std::pow(2.0 * std::numbers::pi * reference_frequency_Hz, 1.0 - bank_.order())),
+      exponent_(stretch_exponent) {
   if (!(beta_ >= 0.0) || !std::isfinite(beta_)) throw std::invalid_argument("stiffness_damping: beta_s must be >= 0");
   if (!(share_ >= 0.0 && share_ <= 1.0))
     throw std::invalid_argument("stiffness_damping: current_tangent_share must lie in [0, 1]");
   if (!(reference_frequency_Hz > 0.0) || !std::isfinite(reference_frequency_Hz))
     throw std::invalid_argument("stiffness_damping: order_reference_frequency_Hz must be > 0");
+  if (!std::isfinite(exponent_)) throw std::invalid_argument("stiffness_damping: stretch_exponent must be finite");
 }
 
 Mat6 StiffnessDampingEffect::damping_tangent(const Mat3& F) const {
-  if (share_ == 0.0) return C0_;
-  return (1.0 - share_) * C0_ + share_ * base_->evaluate(F).dS_dE;
+  const double stretch_factor = exponent_ == 0.0 ? 1.0 : std::pow(F.determinant(), -exponent_);
+  if (share_ == 0.0) return stretch_factor * C0_;
+  return stretch_factor * ((1.0 - share_) * C0_ + share_ * base_->evaluate(F).dS_dE);
 }
 
 PointResponse StiffnessDampingEffect::integrate(const Mat3& F_old, const Mat3& F_new, double dt,
@@ -89,6 +94,7 @@ std::string StiffnessDampingEffect::describe() const {
   o << "stiffness-proportional damping (beta_s = " << beta_ << " s";
   if (share_ > 0.0) o << ", current-tangent share " << share_;
   if (bank_.order() < 1.0) o << ", fractional order " << bank_.order();
+  if (exponent_ != 0.0) o << ", stiffness x J^-" << exponent_;
   o << ") over " << inner_->describe();
   return o.str();
 }

@@ -2,7 +2,7 @@
 /// Stiffness-proportional (Rayleigh beta) damping at material level, the paper's beta = 1e-4 s, with an optional
 /// fractional order q (a spring-pot in place of the dashpot; docs/physics.md 5.4, 5.4b):
 ///   S_d = beta_s omega_r^(1-q) C_d : D^q E,   omega_r = 2 pi f_r,
-///   C_d = (1 - w) C0 + w C_e(F_old),
+///   C_d = J_old^-n [(1 - w) C0 + w C_e(F_old)],
 /// D^q the Caputo derivative from the virgin state (material/spring_pot.hpp); q = 1 (the default) gives the dashpot
 /// S_d = beta_s C_d : (E_new - E_old)/dt (backward-Euler rate; dt = 0: no extra stress) with no state. omega_r^(1-q)
 /// makes beta_s the damping time at the reference frequency f_r whatever q: the loss tangent the term adds there is
@@ -27,10 +27,10 @@ namespace cushion::material {
 class StiffnessDampingEffect final : public EffectDecorator {
  public:
   /// elastic_base: supplies C0 = dS/dE at F = I and C_e(F) (not null); beta_s [s] >= 0; current_share w in [0, 1];
-  /// order q in (0, 1]; reference_frequency_Hz f_r > 0; else std::invalid_argument.
+  /// order q in (0, 1]; reference_frequency_Hz f_r > 0; stretch_exponent n finite; else std::invalid_argument.
   StiffnessDampingEffect(std::shared_ptr<const Material> inner, std::shared_ptr<const Hyperelastic> elastic_base,
                          double beta_s, double current_share = 0.0, double order = 1.0,
-                         double reference_frequency_Hz = 5.0);
+                         double reference_frequency_Hz = 5.0, double stretch_exponent = 0.0);
 
   PointResponse integrate(const Mat3& F_old, const Mat3& F_new, double dt, std::span<const double> state_old,
                           std::span<double> state_new) const override;
@@ -38,23 +38,26 @@ class StiffnessDampingEffect final : public EffectDecorator {
   std::string describe() const override;
 
   const Mat6& initial_tangent() const { return C0_; }  ///< C0 [MPa], Voigt
-  /// C_d(F) = (1 - w) C0 + w C_e(F) [MPa], Voigt, F the deformation gradient (reference frame).
+  /// C_d(F) = J^-n [(1 - w) C0 + w C_e(F)] [MPa], Voigt, F the deformation gradient (reference frame), J = det F.
   Mat6 damping_tangent(const Mat3& F) const;
   double beta_s() const { return beta_; }             ///< [s]
   double current_share() const { return share_; }     ///< w [-]
   double order() const { return bank_.order(); }      ///< q [-]
+  double stretch_exponent() const { return exponent_; }  ///< n [-]
   /// beta_s omega_r^(1-q) [s^q]: the factor of C_d : D^q E.
   double coefficient() const { return coefficient_; }
 
  private:
   StiffnessDampingEffect(std::shared_ptr<const Material> inner, std::shared_ptr<const Hyperelastic> elastic_base,
-                         double beta_s, double current_share, SpringPotBank bank, double reference_frequency_Hz);
+                         double beta_s, double current_share, SpringPotBank bank, double reference_frequency_Hz,
+                         double stretch_exponent);
 
   std::shared_ptr<const Hyperelastic> base_;
   Mat6 C0_;
   double beta_, share_;
   SpringPotBank bank_;
   double coefficient_;
+  double exponent_;
 };
 
 }  // namespace cushion::material

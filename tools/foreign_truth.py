@@ -20,7 +20,8 @@ The generator works in 1D at nu = 0 with free laterals (stretch l = 1 - e); cush
   Prony x J^-c            a_j -> a_j l^-c on each increment (history share 1)             power_law
   friction                k (E - E_p), |.| <= s_y on E = (l^2 - 1)/2                      jenkins (strain measure)
   stiffness damping       beta_s C_d D^q E, C_d the current (w = 1) or initial (w = 0) tangent  stiffness_proportional
-                          (w = 1, q = 1), fractional (w = 0, beta_s (2 pi f_r)^(1-q) 2 sum mu_i = c): strain measure
+                          (w = 1, q = 1), fractional (w = 0, beta_s (2 pi f_r)^(1-q) 2 sum mu_i = c, stretch
+                          exponent 2: a constant nominal coefficient about each preload): strain measure
 """
 import json
 import math
@@ -83,7 +84,7 @@ def effect_of(family, p, base, where):
         initial_modulus = 2.0 * sum(param(h, "mu_kPa", where + ": base.hyperfoam") for h in base["hyperfoam"])
         beta = c / ((2.0 * math.pi * ORDER_REFERENCE_HZ) ** (1.0 - q) * initial_modulus)
         return {"kind": "stiffness_damping", "beta_s": beta, "current_tangent_share": 0.0, "derivative_order": q,
-                "order_reference_frequency_Hz": ORDER_REFERENCE_HZ}, "strain measure"
+                "order_reference_frequency_Hz": ORDER_REFERENCE_HZ, "stretch_exponent": 2.0}, "strain measure"
     return None
 
 

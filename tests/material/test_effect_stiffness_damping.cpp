@@ -214,5 +214,53 @@ TEST(EffectStiffnessDamping, FractionalMemoryCarriesOverAZeroStep) {
   EXPECT_LT(test::rel_diff(Vec6(S - foam->evaluate(F).S), Vec6(S1 - foam->evaluate(F).S - dashpot_part)), 1e-12);
 }
 
+TEST(EffectStiffnessDamping, StretchExponentTwoGivesAConstantNominalCoefficientInAUniaxialTest) {
+  // F = diag(l, 1, 1) (a uniaxial test at nu = 0), w = 0, q = 1: the extra PK2 stress is J_old^-n beta C0 dE/dt, so
+  // its nominal stress P = l S is l l_old^-n beta C0_1111 (l^2 - l_old^2)/(2 dt), which for n = 2 tends to
+  // beta C0_1111 dl/dt at every compression (the generator's nominal forms, docs/physics.md 9.22): checked against the
+  // discrete formula to 1e-10 and, at 25 % and 50 % compression with dl = 1e-6, against beta C0_1111 dl/dt to 1e-5;
+  // n = 0 gives l_old^2 times that (0.56 and 0.25 of it: the Green-Lagrange form's nominal coefficient).
+  const auto foam = test::effect_test_foam();
+  const double beta = 2e-3, dt = 1e-5, C0 = foam->evaluate(Mat3::Identity()).dS_dE(0, 0);  // l-dot 0.1/s
+  for (double l_old : {0.75, 0.5}) {
+    const double l = l_old - 1e-6;
+    const Mat3 F_old = Vec3(l_old, 1.0, 1.0).asDiagonal(), F_new = Vec3(l, 1.0, 1.0).asDiagonal();
+    std::vector<double> none;
+    for (double n : {2.0, 0.0}) {
+      const StiffnessDampingEffect m(foam, foam, beta, 0.0, 1.0, 5.0, n);
+      const double nominal = l * (m.integrate(F_old, F_new, dt, none, none).S(0) - foam->evaluate(F_new).S(0));
+      const double discrete = l * std::pow(l_old, -n) * beta * C0 * (l * l - l_old * l_old) / (2.0 * dt);
+      EXPECT_NEAR(nominal / discrete, 1.0, 1e-10) << "l " << l_old << ", n " << n;
+      const double constant = beta * C0 * (l - l_old) / dt;
+      if (n == 2.0) EXPECT_NEAR(nominal / constant, 1.0, 1e-5) << "l " << l_old;
+      if (n == 0.0) EXPECT_NEAR(nominal / constant, l_old * l_old, 1e-5) << "l " << l_old;
+    }
+  }
+  EXPECT_THROW(StiffnessDampingEffect(foam, foam, beta, 0.0, 1.0, 5.0, std::nan("")), std::invalid_argument);
+}
+
+TEST(EffectStiffnessDamping, StretchExponentKeepsTheTangentsExact) {
+  // n = 1.5 with w = 0.6, the dashpot and the fractional bank: the increment tangent against finite differences
+  // (relative 1e-6; the factor J_old^-n is taken at the start of the increment like C_d, so it adds no term) and the
+  // complex tangent against a time-domain sine at 25 % preload (0.5 % on |E*|, 0.2 deg).
+  std::mt19937 rng(7);
+  const auto foam = test::effect_test_foam();
+  const StiffnessDampingEffect dashpot(foam, foam, 1e-3, 0.6, 1.0, 5.0, 1.5);
+  const StiffnessDampingEffect bank(foam, foam, 1e-3, 0.6, 0.5, 5.0, 1.5);
+  for (int trial = 0; trial < 3; ++trial) {
+    const Mat3 F_old = test::random_F(rng, 0.3), F = test::random_F(rng, 0.3);
+    EXPECT_LT(test::increment_tangent_error(dashpot, F_old, F, 0.01, {}), 1e-6) << "trial " << trial;
+    std::vector<double> state(bank.state_size()), next(bank.state_size());
+    bank.initial_state(state);
+    bank.integrate(Mat3::Identity(), F_old, 0.05, state, next);
+    EXPECT_LT(test::increment_tangent_error(bank, F_old, F, 0.01, next), 1e-6) << "trial " << trial;
+  }
+  for (double f : {1.0, 20.0}) {
+    const test::SineComparison c = test::compare_sine(dashpot, -0.25, 1.0, 1, f, 6, 1000);
+    EXPECT_LT(c.modulus_error(), 5e-3) << f << " Hz";
+    EXPECT_LT(c.phase_error_deg(), 0.2) << f << " Hz: phase " << c.phase_deg();
+  }
+}
+
 }  // namespace
 }  // namespace cushion::material
