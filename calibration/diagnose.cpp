@@ -16,6 +16,7 @@
 
 #include "calibration/ceres_options.hpp"
 #include "calibration/early_stop.hpp"
+#include "calibration/fit_model.hpp"
 #include "calibration/parallel_jobs.hpp"
 #include "calibration/recent_runs.hpp"
 #include "io/input_error.hpp"
@@ -96,19 +97,22 @@ bool fitted_here(const material::EffectInfo& info, const material::EffectParamet
 /// terms' a_i kept, the g_i renormalised), so that the base factor in [0.1, 10] spans 0.01-1 times the mean. Measured
 /// on the Ogden-Roxburgh campaign c002 (docs/physics.md 9.24): its fitted base holds the term at 0.03 s at 0; given with
 /// that term's g at 0.01 instead, Mullins reaches chi2/N 0.85 (every test within 1.38x noise) against 2.7.
+/// `prony` with the long-term ratios a_i (g_i = a_i/(1 + sum a), fit_model.hpp), its times kept.
+std::vector<material::PronyTerm> with_long_term_ratios(const std::vector<material::PronyTerm>& prony,
+                                                       const std::vector<double>& a) {
+  std::vector<double> tau;
+  for (const auto& t : prony) tau.push_back(t.tau);
+  return prony_from_long_term_ratios(a, tau);
+}
+
 void revive_dead_prony_terms(material::MaterialSpec& s) {
   if (s.prony.empty()) return;
-  double g_sum = 0.0;
-  for (const auto& t : s.prony) g_sum += t.g;
-  std::vector<double> a;
-  for (const auto& t : s.prony) a.push_back(t.g / (1.0 - g_sum));
+  std::vector<double> a = long_term_ratios(s.prony);
   const double mean = std::accumulate(a.begin(), a.end(), 0.0) / static_cast<double>(a.size());
   bool revived = false;
   for (double& x : a)
     if (x < 1e-3 * mean) x = 0.1 * mean, revived = true;
-  if (!revived) return;
-  const double a_sum = std::accumulate(a.begin(), a.end(), 0.0);
-  for (std::size_t k = 0; k < a.size(); ++k) s.prony[k].g = a[k] / (1.0 + a_sum);
+  if (revived) s.prony = with_long_term_ratios(s.prony, a);
 }
 
 /// The material with the candidate effects and the campaign comparison it gives.
@@ -196,10 +200,7 @@ class CandidateModel {
   /// The spec with the effects at u (effects needing a viscoelastic model first).
   material::MaterialSpec spec_at(const double* u) const {
     material::MaterialSpec s = base_;
-    std::vector<double> a;  // Prony relative moduli, scaled, then back to g_i = a_i/(1 + sum a)
-    double g_sum = 0.0, a_sum = 0.0;
-    for (const auto& t : s.prony) g_sum += t.g;
-    for (const auto& t : s.prony) a.push_back(t.g / (1.0 - g_sum));
+    std::vector<double> a = long_term_ratios(s.prony);  // Prony relative moduli, scaled, then back to the g_i
     bool prony_scaled = false;
     for (std::size_t i = 0; i < free_.size(); ++i) {
       const FreeParameter& f = free_[i];
@@ -212,10 +213,7 @@ class CandidateModel {
         case BaseTarget::none: break;
       }
     }
-    if (prony_scaled) {
-      for (double x : a) a_sum += x;
-      for (std::size_t k = 0; k < a.size(); ++k) s.prony[k].g = a[k] / (1.0 + a_sum);
-    }
+    if (prony_scaled) s.prony = with_long_term_ratios(s.prony, a);
     const std::vector<material::EffectSpec> candidate = effects_at(u);
     s.effects.insert(s.effects.end(), candidate.begin(), candidate.end());
     s.effects = material::composition_order(std::move(s.effects));

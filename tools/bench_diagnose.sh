@@ -108,8 +108,8 @@ fi
 
 # The truth in cushion's catalogue against its own campaign (not timed; about 1 s a campaign).
 for camp in "$OUT"/campaigns/c[0-9]*; do
-  rm -rf "$camp/truth_material.json" "$camp/truth_compare" "$camp/truth_status.txt"
-  if python3 tools/foreign_truth.py "$camp" "$camp/truth_material.json" 2> "$camp/truth_status.txt"; then
+  rm -rf "$camp/truth_material.json" "$camp/truth_compare" "$camp/truth_status.txt" "$camp/truth_map.txt"
+  if python3 tools/foreign_truth.py "$camp" "$camp/truth_material.json" > "$camp/truth_map.txt" 2> "$camp/truth_status.txt"; then
     "$CUSHION" compare "$camp/truth_material.json" "$camp/campaign.json" -o "$camp/truth_compare" > /dev/null 2>> "$camp/truth_status.txt" ||
       echo "compare failed" >> "$camp/truth_status.txt"
   fi
@@ -121,6 +121,10 @@ out, seed, jobs, threads, rescore = sys.argv[1], sys.argv[2], sys.argv[3], sys.a
 families = ["pneumatic", "friction", "mullins", "stiffness_damping", "strain_dependent_prony"]
 columns = families + ["none", "base", "fit-failed", "diagnose-failed"]
 
+def worst_ratio(compare):
+    """The largest error/noise over the tests of a comparison (report.json "tests"), None when no test has one."""
+    return max((t["error_over_noise"] for t in compare["tests"] if t.get("error_over_noise") is not None), default=None)
+
 def verdict_of(camp):
     status, fit_s, diag_s = open(os.path.join(camp, "bench_status.txt")).read().split()
     seconds = float(fit_s) + float(diag_s)
@@ -130,11 +134,10 @@ def verdict_of(camp):
     if status != "ok" or not os.path.exists(report):
         return ["diagnose-failed"], None, None, seconds, []
     r = json.load(open(report))
-    worst = lambda c: max((t["error_over_noise"] for t in c["tests"] if t.get("error_over_noise") is not None), default=None)
-    baseline = worst(r["baseline"])
+    baseline = worst_ratio(r["baseline"])
     if r.get("winner"):
         named = [k.strip() for k in r["winner"].split("+")]
-        after = worst(r["candidates"][0]["compare"]) if r["candidates"] and "compare" in r["candidates"][0] else None
+        after = worst_ratio(r["candidates"][0]["compare"]) if r["candidates"] and "compare" in r["candidates"][0] else None
         rival = [k.strip() for k in r["rival"]["name"].split("+")] if r.get("rival") else []
         return named, baseline, after, seconds, rival
     if r.get("at_noise_level") or r["verdict"].startswith("No effect is missing"):
@@ -151,10 +154,8 @@ def truth_in_catalogue(camp):
     report = os.path.join(camp, "truth_compare", "report.json")
     if not os.path.exists(report):
         return None, re.sub(r"^.*: ", "", status.splitlines()[-1]) if status else "no truth material"
-    r = json.load(open(report))
-    worst = max((t["error_over_noise"] for t in r["tests"] if t.get("error_over_noise") is not None), default=None)
-    described = json.load(open(os.path.join(camp, "truth_material.json")))["description"]
-    return worst, "strain measure" if "strain measure" in described else "same"
+    kind = open(os.path.join(camp, "truth_map.txt")).read().strip()  # tools/foreign_truth.py: base, same or strain
+    return worst_ratio(json.load(open(report))), "strain measure" if kind == "strain" else "same"
 
 def lists_tests_beyond_noise(camp):
     """A verdict whose effect leaves a test beyond noise says so (diagnose: "Tests still beyond noise ...")."""

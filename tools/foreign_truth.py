@@ -4,9 +4,10 @@ where cushion's effect catalogue has the truth's functional forms (docs/physics.
 
     python3 tools/foreign_truth.py CAMPAIGN_DIR OUT.json
 
-Exit 0: OUT.json written; its "description" says for each effect whether the map is the same equation in the 1D test
-("same") or the same mechanism written on another strain measure ("strain measure": cushion's Green-Lagrange strain and
-second Piola-Kirchhoff stress where the generator uses the nominal strain e and stress s, equal to first order in e).
+Exit 0: OUT.json written, and one word on stdout, the map of the whole truth: "base" (a control), "same" (every effect
+the same equation in the 1D test) or "strain" (some effect the same mechanism written on another strain measure:
+cushion's Green-Lagrange strain and second Piola-Kirchhoff stress where the generator uses the nominal strain e and
+stress s, equal to first order in e); OUT.json's "description" says it per effect.
 Exit 3: a form of the truth has no counterpart in the catalogue (named on stderr); nothing is written.
 Exit 2: bad input (one line on stderr naming the file and key).
 
@@ -132,6 +133,7 @@ def main():
     with open(sys.argv[2], "w") as f:
         json.dump(material, f, indent=1)
         f.write("\n")
+    print("base" if not maps else "strain" if any(m.endswith("strain measure") for m in maps) else "same")
 
 
 if __name__ == "__main__":
