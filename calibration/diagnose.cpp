@@ -284,7 +284,8 @@ enum class Scan {
   /// DiagnoseForeignFittedBaseline (friction chi2 3248 against 2167 from the scan in turn; 4 LM iterations from each
   /// start did not tell which would end lower): not taken (measured 2026-11-25). A parameter the catalogue pairs with
   /// another (scan_with: the air flow's trapped-air modulus with its permeability, which set the Maxwell time between
-  /// them) is scanned with it on every combination (scan_pair) instead; only here, not in added_effect.
+  /// them; the dashpot's rate exponent with its permeability exponent) is scanned with it on every combination
+  /// (scan_pair) instead; only here, not in added_effect.
   effect,
   /// The parameters of the candidate's last effect only, in turn, the base and the other effects held: a pair starts
   /// from the best single's fit (its base and effect) and the added effect's own single fit, and only the added effect

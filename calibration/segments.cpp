@@ -92,11 +92,12 @@ Segments detect_segments(const StressStrainRecord& r, const SegmentOptions& o) {
     throw InputError(r.source + ": too few points on the loading branch (" +
                      std::to_string(s.load_end - s.load_begin + 1) + ")");
   const double final_drop = s.peak_strain - *std::min_element(r.strain.begin() + s.unload_begin, r.strain.end());
-  if (s.unload_begin + 1 >= n || final_drop < o.min_unloading_drop * s.peak_strain) {
+  const bool unloaded = r.stress.back() <= o.unloaded_stress_fraction * s.peak_stress;
+  if (s.unload_begin + 1 >= n || (final_drop < o.min_unloading_drop * s.peak_strain && !unloaded)) {
     std::ostringstream m;
-    m << r.source << ": no unloading branch: after the peak strain " << s.peak_strain
-      << " the strain returns by only " << final_drop << " (need " << o.min_unloading_drop * 100
-      << " % of the peak)";
+    m << r.source << ": no unloading branch: after the peak strain " << s.peak_strain << " the strain returns by only "
+      << final_drop << " (need " << o.min_unloading_drop * 100 << " % of the peak, or the stress down to "
+      << o.unloaded_stress_fraction * 100 << " % of its peak by the end)";
     throw InputError(m.str());
   }
 

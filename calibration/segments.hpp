@@ -42,7 +42,11 @@ struct SegmentOptions {
   double lift_off_fraction = 1e-3;  ///< force ~ 0 means stress <= max(lift_off_fraction*peak, noise tolerance)
   double lift_off_strain = 0.05;    ///< force ~ 0 above this fraction of eps_max is a lift-off (warning);
                                     ///< below it the unloading simply ends there
-  double min_unloading_drop = 0.1;  ///< unloading must return by at least this fraction of eps_max
+  double min_unloading_drop = 0.1;  ///< unloading must return by at least this fraction of eps_max, unless:
+  /// an unloading whose stress falls to at most this fraction of the peak stress by the record's end is a branch
+  /// whatever its strain return: a platen that leaves a slowly recovering foam within a few percent of strain
+  /// (a fast test of a foam with long relaxation times), recorded until the force was gone
+  double unloaded_stress_fraction = 0.05;
   int min_points = 5;               ///< per branch
 };
 
@@ -60,8 +64,9 @@ struct Segments {
 };
 
 /// Detects loading (to the maximum strain), optional hold and unloading. Rejects with InputError
-/// (naming the record's source and line): too few points, no unloading branch, non-monotonic loading
-/// or unloading beyond the noise tolerance. An unloading branch whose force reaches ~0 before the
+/// (naming the record's source and line): too few points, no unloading branch (the strain returns by less than
+/// min_unloading_drop of the peak while the stress stays above unloaded_stress_fraction of its peak), non-monotonic
+/// loading or unloading beyond the noise tolerance. An unloading branch whose force reaches ~0 before the
 /// strain returns to 0 (the foam lifted off the platen) is truncated there with a warning.
 Segments detect_segments(const StressStrainRecord& record, const SegmentOptions& options = {});
 

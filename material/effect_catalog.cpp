@@ -61,7 +61,8 @@ const std::vector<Entry>& entries() {
          {"rate_exponent",
           "q: flow law p = c(J) sign(v)|v|^q of the volumetric rate v [1/s]: 1 Darcy, < 1 resistance thinning with "
           "rate, > 1 inertial (Forchheimer-like) losses",
-          1.0, 0.1, 3.0, false, true, false, 0.0, "", std::nullopt, std::nullopt, "air_modulus_kPa"},
+          1.0, 0.1, 3.0, false, true, false, 0.0, "permeability_exponent", std::nullopt, std::nullopt,
+          "air_modulus_kPa"},
          {"pressure_share",
           "s: share of the air's stress that is an isotropic pressure (a laterally free specimen inflates under it and "
           "the damping saturates); the rest, 1 - s, is a drag c(J) D along the rate of deformation (an axial dashpot "

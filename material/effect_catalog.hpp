@@ -47,7 +47,9 @@ struct EffectParameterInfo {
   double fit_start = 0;
   /// Another parameter of the same effect that diagnose's start search scans together with this one (every
   /// combination of both parameters' trial values) instead of each in turn: for two parameters that set one time scale
-  /// between them, where moving either alone leaves the effect out of its basin (empty: scanned in turn).
+  /// or one shape between them, where moving either alone leaves the effect out of its basin (the air flow's trapped-air
+  /// modulus with its permeability: the Maxwell time; the dashpot's rate exponent with its permeability exponent: how
+  /// the loss grows with frequency and with the preload, docs/physics.md 9.25; empty: scanned in turn).
   std::string scan_with{};
   /// For a parameter diagnose does not fit (fit false): the value it holds there instead of the default, where the
   /// default keeps a form users' files expect and diagnose fits another (pneumatic pressure_share 0: the drag).

@@ -88,15 +88,16 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// Campaign `name` of the benchmark's seed-2025 set (60 campaigns, 10 pairs, 10 controls), generated alone (`--only`,
-/// the same as in the whole set) in a fresh folder, and its truth.json; `options`: more generator options.
+/// Campaign `name` of the benchmark's set of `seed` (default 2025; 60 campaigns, 10 pairs, 10 controls), generated alone
+/// (`--only`, the same as in the whole set) in a fresh folder, and its truth.json; `options`: more generator options.
 struct BenchCampaign {
   fs::path set, dir;
   nlohmann::json truth;
 };
-BenchCampaign bench_campaign(const std::string& tag, const std::string& name, const std::string& options = "") {
+BenchCampaign bench_campaign(const std::string& tag, const std::string& name, const std::string& options = "",
+                             int seed = 2025) {
   BenchCampaign c;
-  c.set = cushion::foreign_program::generate(tag, 60, 2025, 10, 10, options + " --only " + name);
+  c.set = cushion::foreign_program::generate(tag, 60, seed, 10, 10, options + " --only " + name);
   c.dir = c.set / name;
   std::ifstream in(c.dir / "truth.json");
   c.truth = nlohmann::json::parse(in);
@@ -232,20 +233,44 @@ TEST(DiagnoseStart, LinearPerTermStrainDependentPronyIsRankedFirstOnceTheLeaders
   fs::remove_all(c.set);
 }
 
+/// A power-law air dashpot campaign diagnosed from raw data with air flow and stiffness damping as the candidates:
+/// air flow must be named and bring every test within `max_ratio` x noise. Returns the fitted air-flow entry of the
+/// fragment and the truth's dashpot parameters (rate_exponent_q, stretch_exponent_m).
+struct DashpotFit {
+  nlohmann::json air, truth;
+};
+DashpotFit diagnose_air_dashpot(const BenchCampaign& c, double max_ratio) {
+  EXPECT_EQ(c.truth.at("forms").at(0).get<std::string>(), "power_law_dashpot") << "the generator's mix changed";
+  const nlohmann::json d = cushion::foreign_program::diagnose_raw(c.dir, "--candidates pneumatic,stiffness_damping");
+  EXPECT_EQ(d.at("winner"), "pneumatic") << d.at("verdict");
+  for (const auto& t : d.at("candidates").at(0).at("compare").at("tests"))
+    EXPECT_LT(t.at("error_over_noise").get<double>(), max_ratio) << t.at("name");
+  return {d.at("fragment").at("effects").at(0), c.truth.at("parameters").at("pneumatic")};
+}
+
 TEST(DiagnoseStart, PowerLawAirDashpotIsNamedAirFlowFromItsDashpotStart) {
   const BenchCampaign c = bench_campaign("diagnose_air_dashpot", "c037", "--base-refit scale");
-  ASSERT_EQ(c.truth.at("forms").at(0).get<std::string>(), "power_law_dashpot") << "the generator's mix changed";
-  const nlohmann::json& dashpot = c.truth.at("parameters").at("pneumatic");
-
-  const nlohmann::json d = cushion::foreign_program::diagnose_raw(c.dir, "--candidates pneumatic,stiffness_damping");
-  ASSERT_EQ(d.at("winner"), "pneumatic") << d.at("verdict");
-  for (const auto& t : d.at("candidates").at(0).at("compare").at("tests"))
-    EXPECT_LT(t.at("error_over_noise").get<double>(), 2.0) << t.at("name");
-  const nlohmann::json& air = d.at("fragment").at("effects").at(0);
-  ASSERT_EQ(air.at("kind"), "pneumatic");
-  EXPECT_NEAR(air.at("rate_exponent").get<double>(), dashpot.at("rate_exponent_q").get<double>(), 0.05);
+  const DashpotFit f = diagnose_air_dashpot(c, 2.0);
+  const double nan = std::nan("");
+  EXPECT_NEAR(f.air.value("rate_exponent", nan), f.truth.at("rate_exponent_q").get<double>(), 0.05);
   // our drag's nominal stress goes as l^-(n_K + 2) at nu = 0 (docs/physics.md 5.1), the truth's as l^-m
-  EXPECT_NEAR(air.at("permeability_exponent").get<double>() + 2.0, dashpot.at("stretch_exponent_m").get<double>(), 0.3);
+  EXPECT_NEAR(f.air.value("permeability_exponent", nan) + 2.0, f.truth.at("stretch_exponent_m").get<double>(), 0.3);
+  fs::remove_all(c.set);
+}
+
+// The dashpot start's rate exponent q and permeability exponent n_K scanned together (catalogue scan_with): between them
+// they set how the drag's loss grows with frequency (omega^(2 - q) at a constant acceleration amplitude) and how it
+// changes from one preload to the other (l^-(n_K + 2)), so that a move of either alone from the start (q 1, n_K 2) only
+// trades one test for the other. Campaign c016 of the seed-2026 scale set (a set the start scan was not tuned on): a
+// power-law dashpot s = c0 l^-m |e'|^q (q 0.70, m 0.64: nearly no stretch dependence, n_K = m - q - 1 = -1.06) on a
+// stiff 65 kg/m3 foam. Scanned in turn, the dashpot start ended at dBIC 2358 (Levenberg-Marquardt stopped by its 12
+// iterations), the Maxwell start's 2828 was kept, and stiffness damping was named (3967 polished against 3097, the
+// sweeps at 2.6x and 2.2x noise; 2026-12-05 benchmark). Scanned together: the dashpot start reaches 3327, polished
+// 4187, air flow is named and every test falls within 1.2x noise (measured 2026-12-05), q near the truth's.
+TEST(DiagnoseStart, PowerLawAirDashpotIsFoundFromTheJointScanOfItsRateAndStretchExponents) {
+  const BenchCampaign c = bench_campaign("diagnose_air_dashpot_2026", "c016", "--base-refit scale", 2026);
+  const DashpotFit f = diagnose_air_dashpot(c, 1.5);
+  EXPECT_NEAR(f.air.value("rate_exponent", std::nan("")), f.truth.at("rate_exponent_q").get<double>(), 0.1);
   fs::remove_all(c.set);
 }
 

@@ -105,6 +105,30 @@ TEST(Segments, RejectsNoUnloadingBranch) {
   EXPECT_NE(m.find("no unloading branch"), std::string::npos) << m;
 }
 
+// A fast test of a slowly recovering foam: the stress is gone within 4 mm of the peak (strain 0.05 of 0.75) and the
+// machine stopped recording there (foreign campaign seed 2026 c028, qs_600). The branch is short but it is one.
+TEST(Segments, AnUnloadingWhoseStressIsGoneWithinAFewPercentOfStrainIsABranch) {
+  Raw raw = paper_like(0.0);
+  Raw cut;
+  for (std::size_t i = 0; i < raw.t.size(); ++i) {
+    if (raw.t[i] > 30.0 + 2.0) break;  // 4 mm of unloading at 2 mm/s
+    cut.t.push_back(raw.t[i]);
+    cut.u.push_back(raw.u[i]);
+    cut.F.push_back(raw.t[i] <= 30.0 ? raw.F[i] : raw.F[i] * std::pow(1.0 - (raw.t[i] - 30.0) / 2.0, 3.0) + 0.5);
+  }
+  const auto r = nominal(cut);
+  const auto s = cal::detect_segments(r);
+  // Truncated where the force reaches ~0 (below 1e-3 of the peak: 6 N, at u = 56.4 mm), as any lift-off.
+  EXPECT_TRUE(s.lift_off);
+  EXPECT_NEAR(r.strain[s.unload_end], 56.4 / 80.0, 0.002);
+  EXPECT_GT(s.unload_end - s.unload_begin, 80u);
+  // The same record with the stress still at 20 % of its peak where it ends: no unloading branch.
+  for (std::size_t i = 0; i < cut.t.size(); ++i)
+    if (cut.t[i] > 30.0) cut.F[i] = std::max(cut.F[i], 0.2 * 6000.0);
+  const std::string m = message_of(nominal(cut));
+  EXPECT_NE(m.find("no unloading branch"), std::string::npos) << m;
+}
+
 TEST(Segments, RejectsNonMonotonicLoading) {
   Raw raw = paper_like(2.0);
   for (std::size_t i = 0; i < raw.t.size(); ++i)
