@@ -92,11 +92,6 @@ bool fitted_here(const material::EffectInfo& info, const material::EffectParamet
   return true;
 }
 
-/// A Prony term `cushion fit` left at its bound a_i = 0 (a_i = g_i/(1 - sum g)) is out of reach of a factor on a_i:
-/// every joint fit would keep it dead. Each term below 1e-3 of the mean a_i is set to a tenth of the mean (the other
-/// terms' a_i kept, the g_i renormalised), so that the base factor in [0.1, 10] spans 0.01-1 times the mean. Measured
-/// on the Ogden-Roxburgh campaign c002 (docs/physics.md 9.24): its fitted base holds the term at 0.03 s at 0; given with
-/// that term's g at 0.01 instead, Mullins reaches chi2/N 0.85 (every test within 1.38x noise) against 2.7.
 /// `prony` with the long-term ratios a_i (g_i = a_i/(1 + sum a), fit_model.hpp), its times kept.
 std::vector<material::PronyTerm> with_long_term_ratios(const std::vector<material::PronyTerm>& prony,
                                                        const std::vector<double>& a) {
@@ -105,6 +100,11 @@ std::vector<material::PronyTerm> with_long_term_ratios(const std::vector<materia
   return prony_from_long_term_ratios(a, tau);
 }
 
+/// A Prony term `cushion fit` left at its bound a_i = 0 (a_i = g_i/(1 - sum g)) is out of reach of a factor on a_i:
+/// every joint fit would keep it dead. Each term below 1e-3 of the mean a_i is set to a tenth of the mean (the other
+/// terms' a_i kept, the g_i renormalised), so that the base factor in [0.1, 10] spans 0.01-1 times the mean. Measured
+/// on the Ogden-Roxburgh campaign c002 (docs/physics.md 9.24): its fitted base holds the term at 0.03 s at 0; given with
+/// that term's g at 0.01 instead, Mullins reaches chi2/N 0.85 (every test within 1.38x noise) against 2.7.
 void revive_dead_prony_terms(material::MaterialSpec& s) {
   if (s.prony.empty()) return;
   std::vector<double> a = long_term_ratios(s.prony);

@@ -245,7 +245,9 @@ DashpotFit diagnose_air_dashpot(const BenchCampaign& c, double max_ratio) {
   EXPECT_EQ(d.at("winner"), "pneumatic") << d.at("verdict");
   for (const auto& t : d.at("candidates").at(0).at("compare").at("tests"))
     EXPECT_LT(t.at("error_over_noise").get<double>(), max_ratio) << t.at("name");
-  return {d.at("fragment").at("effects").at(0), c.truth.at("parameters").at("pneumatic")};
+  const nlohmann::json& air = d.at("fragment").at("effects").at(0);
+  EXPECT_EQ(air.at("kind"), "pneumatic");
+  return {air, c.truth.at("parameters").at("pneumatic")};
 }
 
 TEST(DiagnoseStart, PowerLawAirDashpotIsNamedAirFlowFromItsDashpotStart) {
