@@ -7,6 +7,7 @@
 #include <functional>
 #include <iomanip>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <numeric>
 #include <sstream>
@@ -15,6 +16,7 @@
 #include <Eigen/Dense>
 
 #include "calibration/ceres_options.hpp"
+#include "calibration/damage_start.hpp"
 #include "calibration/early_stop.hpp"
 #include "calibration/fit_model.hpp"
 #include "calibration/parallel_jobs.hpp"
@@ -584,9 +586,7 @@ CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector
       fit.warning = "did not converge within " + std::to_string(options.max_iterations) +
                     " iterations; ranked with the best parameters found (chi2/N may still fall: raise --max-iterations)";
     if (summary.termination_type == ceres::USER_SUCCESS)
-      fit.warning = "stopped after " + std::to_string(stop.iteration) +
-                    " iterations: its second effect explained too little of the chi2 the best single leaves to reach "
-                    "the pair share by the end (--pair-stop-share)";
+      fit.warning = "stopped after " + std::to_string(stop.iteration) + " iterations: " + stop.why;
     if (stopped_at_failure)
       fit.warning = "Levenberg-Marquardt stopped where the model run fails close by (" + summary.message +
                     "); ranked with the best parameters evaluated";
@@ -950,6 +950,49 @@ std::vector<std::vector<material::EffectSpec>> single_starts(const std::vector<m
   return starts;
 }
 
+/// The early stop of a damage start (DiagnoseOptions::damage_start_stop_iteration): chi2 still above the base refit's
+/// by then is a damage that explains nothing (the estimate took viscous or frictional hysteresis for damage: seed-2027
+/// friction c002's damage start ended at dBIC -1711 after 200 model runs).
+EarlyStop damage_start_stop(const CandidateJobs& c) {
+  return {c.options.damage_start_stop_iteration, c.d.base_refit->chi2,
+          "the damage start was still above the base refit without the effect"};
+}
+
+/// The damage start of a single whose effect has damage parameters (EffectInfo::damage_limit_parameter): d_inf and e_d
+/// estimated from the slowest quasi-static test (logged), and a job that refits the base refit's hyperfoam to the first
+/// loadings over 1 - d(e) (calibration/damage_start.hpp; inside the job, so that it runs beside the other singles) and
+/// then fits the single from there with Levenberg-Marquardt (no start scan: the scan of the effect's six parameters
+/// cost about 250 model runs on seed-2027 c017 and c036 and ended no better). None when options.damage_start is off or
+/// the base refit did not converge; a job whose base cannot be refitted returns a failed fit (dBIC -inf).
+std::optional<std::function<CandidateFit()>> damage_start_job(const CandidateJobs& c,
+                                                              const std::vector<material::EffectSpec>& single,
+                                                              std::ostream& log) {
+  const material::EffectInfo* info = material::find_effect(single[0].kind);
+  if (!c.options.damage_start || info->damage_limit_parameter.empty() || !c.d.base_refit || !c.d.base_refit->converged)
+    return std::nullopt;
+  const std::optional<LoadingDamage> damage = estimate_loading_damage(c.campaign);
+  if (!damage) return std::nullopt;
+  log << "diagnose: " << single[0].kind << " damage start: d_inf " << fmt(damage->limit) << ", e_d "
+      << fmt(damage->strain)
+      << " from the slowest quasi-static test, the hyperfoam refitted to the first loadings over "
+      << "1 - d\n";
+  std::vector<material::EffectSpec> start = single;
+  start[0].parameters[info->damage_limit_parameter] = std::max(damage->limit, 0.01);  // 0 would hold the branch off
+  start[0].parameters[info->damage_strain_parameter] = damage->strain;
+  return [&c, start = std::move(start), damage = *damage] {
+    const std::optional<material::MaterialSpec> base =
+        damaged_loading_base(c.d.base_refit->fitted, c.campaign, c.d.noise, damage);
+    if (base)
+      return fit_candidate(*base, start, c.campaign, c.d.noise, c.d.residuals, c.d.baseline_bic, c.options, Scan::none,
+                           true, &c.spare, damage_start_stop(c));
+    CandidateFit failed;
+    failed.kinds = {start[0].kind};
+    failed.message = "failed: no hyperfoam fits the first loadings over 1 - d (the damage start)";
+    failed.delta_bic = -std::numeric_limits<double>::infinity();
+    return failed;
+  };
+}
+
 /// Each single's fit with the larger dBIC among its starts' fits (single_of[j]: the single fit j belongs to), with the
 /// model runs and seconds of all its starts.
 std::vector<CandidateFit> best_of_starts(std::vector<CandidateFit> all, const std::vector<std::size_t>& single_of,
@@ -988,11 +1031,17 @@ std::vector<CandidateFit> fit_singles_and_reference(const CandidateJobs& c,
     log_fit(log, *d.base_refit, false);
   }
   std::vector<std::size_t> single_of;  // the single each job fits (a second start: the same single again)
-  for (std::size_t k = 0; k < singles.size(); ++k)
+  for (std::size_t k = 0; k < singles.size(); ++k) {
     for (const auto& start : single_starts(singles[k])) {
       jobs.push_back(c.job(start, Scan::effect, joint));
       single_of.push_back(k);
     }
+    if (!joint) continue;
+    if (auto damaged = damage_start_job(c, singles[k], log)) {
+      jobs.push_back(std::move(*damaged));
+      single_of.push_back(k);
+    }
+  }
   if (c.base_ref() && !joint) jobs.push_back(c.job({}, Scan::all_in_turn, true));
   std::vector<CandidateFit> all = run_all(jobs, c.options.threads, {}, &c.spare);
   if (c.base_ref() && !joint) {
@@ -1047,7 +1096,10 @@ std::function<CandidateFit()> joint_pair_job(const CandidateJobs& c, const mater
 /// (1 - pair_stop_share) chi2_single (DiagnoseOptions::pair_stop_share; none when it is 0).
 EarlyStop pair_stop(const DiagnoseOptions& o, double chi2_single) {
   if (o.pair_stop_share <= 0.0 || !std::isfinite(chi2_single)) return {};
-  return {o.pair_stop_iteration, (1.0 - o.pair_stop_share) * chi2_single};
+  return {
+      o.pair_stop_iteration, (1.0 - o.pair_stop_share) * chi2_single,
+      "its second effect explained too little of the chi2 the best single leaves to reach the pair share by the end "
+      "(--pair-stop-share)"};
 }
 
 /// Pairs of the best single with each of the next best, started from their single fits (a pair without the best single

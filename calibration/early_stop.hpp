@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include <ceres/iteration_callback.h>
 
@@ -15,6 +16,7 @@ namespace cushion::calibration {
 struct EarlyStop {
   int iteration = 0;
   double chi2_above = std::numeric_limits<double>::infinity();
+  std::string why;  ///< the end of the warning of a fit stopped so: "stopped after N iterations: <why>"
   bool active() const { return iteration > 0 && std::isfinite(chi2_above); }
 };
 

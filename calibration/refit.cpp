@@ -677,7 +677,6 @@ RefitResult refit_round(const ViscoHyperfoam& start, const Specimen& specimen, c
                         const std::vector<DynamicTarget>& dynamic, const RefitOptions& options) {
   const auto clock0 = std::chrono::steady_clock::now();
   if (quasi_static.empty()) throw std::invalid_argument("refit: no quasi-static test");
-  if (dynamic.empty()) throw std::invalid_argument("refit: no dynamic test");
   if (start.terms.empty()) throw std::invalid_argument("refit: no hyperfoam term");
   Targets g = make_targets(start, specimen, quasi_static, dynamic, options, options.noise_weighted);
   Targets shown = options.noise_weighted ? make_targets(start, specimen, quasi_static, dynamic, options, false) : g;

@@ -106,8 +106,9 @@ struct DynamicTarget {
 
 /// Refits `start` (hyperfoam with one common nu + Prony with the dynamic test's tau) to the quasi-static
 /// tests (the calibration ones; several rates separate the long-term curve from the slow Prony terms) and
-/// the dynamic test. Each quasi-static test weighs as one test. Throws std::invalid_argument without a
-/// quasi-static test or when the start's terms do not share one nu.
+/// the dynamic test. Each quasi-static test weighs as one test. `dynamic` may be empty: a refit on quasi-static records
+/// alone (the damage start of calibration/damage_start.hpp). Throws std::invalid_argument without a quasi-static test or
+/// when the start's terms do not share one nu.
 RefitResult refit(const ViscoHyperfoam& start, const Specimen& specimen, const std::vector<QuasiStaticTarget>& quasi_static,
                   const std::vector<DynamicTarget>& dynamic, const RefitOptions& options = {});
 

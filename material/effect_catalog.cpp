@@ -95,7 +95,7 @@ const std::vector<Entry>& entries() {
        }},
       {{"mullins",
         "Ogden-Roxburgh softening S = eta S_inner, eta = 1 - erf((W_max - W)/(m + beta W_max))/r below the largest "
-        "energy reached (or the largest Biot strain norm, with a strain_scale)",
+        "energy reached (or the largest Biot strain norm, with a strain_scale), optionally times a damage 1 - d(N_max)",
         {{"r", "r: maximum softening 1/r", 2.0, 1.0, 1e3, true, true, true},
          {"m_kPa", "m: energy scale of the softening (kPa = kJ/m^3); unused with a strain_scale", 1.0, 0.0, 1e4, true,
           true, true, 0.0, "", std::nullopt, std::nullopt, "strain_scale"},
@@ -108,10 +108,18 @@ const std::vector<Entry>& entries() {
          {"strain_scale",
           "m_e: 0, the energy drives the softening (Ogden-Roxburgh); > 0, the Biot strain norm ||U - I|| does, with "
           "this scale in place of m (strain-based damage)",
-          0.0, 0.0, 10.0, false, true, true, 0.0, "", std::nullopt, 0.3}},
+          0.0, 0.0, 10.0, false, true, true, 0.0, "", std::nullopt, 0.3},
+         {"damage_limit",
+          "d_inf: damage in the largest Biot strain norm N_max, S = (1 - d) S_OR with d = d_inf (1 - exp(-N_max/e_d)); "
+          "unlike the Ogden-Roxburgh factor it softens the first loading too and never recovers (0: none)",
+          0.0, 0.0, 0.99, false, true, true},
+         {"damage_strain", "e_d: Biot strain norm over which the damage grows to d_inf", 0.3, 0.0, 10.0, true, true,
+          true, 0.0, "", std::nullopt, std::nullopt, "", "damage_limit"}},
         false,
         true,
-        "relaxation_share"},
+        "relaxation_share",
+        "damage_limit",
+        "damage_strain"},
        [](const BuildContext& c) -> std::shared_ptr<const Material> {
          MullinsParameters p;
          p.r = c.value.at("r");
@@ -119,6 +127,8 @@ const std::vector<Entry>& entries() {
          p.beta = c.value.at("beta");
          p.relaxation_share = c.value.at("relaxation_share");
          p.strain_scale = c.value.at("strain_scale");
+         p.damage_limit = c.value.at("damage_limit");
+         p.damage_strain = c.value.at("damage_strain");
          return std::make_shared<MullinsEffect>(c.inner, c.reference_base, p);
        }},
       {{"strain_dependent_prony",

@@ -83,6 +83,11 @@ struct EffectInfo {
   /// it must sit directly over the Prony memory (the first effect on a Viscoelastic model, or next over
   /// strain_dependent_prony). Empty: none.
   std::string memory_parameter;
+  /// The parameters d_inf and e_d of a damage d = d_inf (1 - exp(-e_max/e_d)) in the largest strain that softens the
+  /// first loading too (mullins damage_limit, damage_strain): diagnose fits the single once more from a start with
+  /// both estimated from a quasi-static test's loading and unloading and the base's hyperfoam refitted to the first
+  /// loadings over 1 - d(e) (calibration/damage_start.hpp). Empty: none.
+  std::string damage_limit_parameter{}, damage_strain_parameter{};
 };
 
 /// Every effect, in a fixed order.

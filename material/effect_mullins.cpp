@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -11,7 +12,7 @@ namespace cushion::material {
 
 MullinsEffect::MullinsEffect(std::shared_ptr<const Material> inner, std::shared_ptr<const Hyperelastic> energy_base,
                              MullinsParameters parameters)
-    : EffectDecorator(inner, 1),
+    : EffectDecorator(inner, parameters.damage_limit > 0.0 ? 2 : 1),
       energy_base_(std::move(energy_base)),
       memory_(parameters.relaxation_share > 0.0 ? std::dynamic_pointer_cast<const PronyMemory>(inner) : nullptr),
       p_(parameters) {
@@ -27,6 +28,14 @@ MullinsEffect::MullinsEffect(std::shared_ptr<const Material> inner, std::shared_
   if (!(p_.beta >= 0.0) || !std::isfinite(p_.beta)) throw std::invalid_argument("mullins: beta must be >= 0");
   if (!(p_.strain_scale >= 0.0) || !std::isfinite(p_.strain_scale))
     throw std::invalid_argument("mullins: strain_scale must be >= 0");
+  if (!(p_.damage_limit >= 0.0 && p_.damage_limit < 1.0))
+    throw std::invalid_argument("mullins: damage_limit must lie in [0, 1)");
+  if (!(p_.damage_strain > 0.0) || !std::isfinite(p_.damage_strain))
+    throw std::invalid_argument("mullins: damage_strain must be > 0");
+}
+
+double MullinsEffect::damage_factor(double N_max) const {
+  return 1.0 - p_.damage_limit * -std::expm1(-N_max / p_.damage_strain);
 }
 
 double MullinsEffect::scale(double D_max) const {
@@ -36,9 +45,12 @@ double MullinsEffect::scale(double D_max) const {
 double MullinsEffect::eta(double D, double D_max) const { return 1.0 - std::erf((D_max - D) / scale(D_max)) / p_.r; }
 
 MullinsEffect::Driver MullinsEffect::driver(const Mat3& F, const ElasticEval& e) const {
-  if (p_.strain_scale == 0.0) return {e.W, e.S};
+  return p_.strain_scale == 0.0 ? Driver{e.W, e.S} : biot_norm(F);
+}
+
+MullinsEffect::Driver MullinsEffect::biot_norm(const Mat3& F) {
   // D^2 = tr((U - I)^2) = tr C - 2 tr U + 3, d tr U/dC = U^-1 / 2: dD/dE = (I - U^-1) / D.
-  const principal::Stretches st = principal::decompose(F);  // e valid (the base evaluated F): st has no failure
+  const principal::Stretches st = principal::decompose(F);  // F valid (the base evaluated it): st has no failure
   const Vec3 l = st.s.array().exp();
   const double D = (l.array() - 1.0).matrix().norm();
   if (D == 0.0) return {0.0, Vec6::Zero()};
@@ -53,24 +65,42 @@ PointResponse MullinsEffect::integrate(const Mat3& F_old, const Mat3& F_new, dou
   const ElasticEval e = energy_base_->evaluate(F_new);
   combine_status(r, e.status, e.message);
   if (r.status == Status::failed) return r;
-  const double D_max_old = own(state_old)[0];
-  const Driver d = driver(F_new, e);
+  // the Biot strain norm, once: the strain driver's and the damage's
+  const std::optional<Driver> n =
+      p_.strain_scale > 0.0 || p_.damage_limit > 0.0 ? std::optional<Driver>(biot_norm(F_new)) : std::nullopt;
+  Softening f = ogden_roxburgh(p_.strain_scale > 0.0 ? *n : Driver{e.W, e.S}, own(state_old)[0], state_new);
+  if (p_.damage_limit > 0.0) damage(f, *n, own(state_old)[1], state_new);
+  if (f.first_loading_unchanged) return r;  // eta = 1 identically, no damage
+  if (memory_) drive_memory_with_softened_stress(r, F_new, e, f.value, f.d_dE, dt, state_new);
+  // The softening left outside the memory: eta^(1-w) (w = 0: eta, the same operations as without a share).
+  const double w = p_.relaxation_share, outer = w == 0.0 ? f.value : std::pow(f.value, 1.0 - w);
+  const double douter_deta = w == 0.0 ? 1.0 : (1.0 - w) * std::pow(f.value, -w);
+  r.dS_dE = outer * r.dS_dE + douter_deta * r.S * f.d_dE.transpose();
+  r.S *= outer;
+  return r;
+}
+
+MullinsEffect::Softening MullinsEffect::ogden_roxburgh(const Driver& d, double D_max_old,
+                                                       std::span<double> state_new) const {
   if (d.D >= D_max_old) {  // first loading: eta = 1 identically, D_max follows D
     own(state_new)[0] = d.D;
-    return r;
+    return {};
   }
   own(state_new)[0] = D_max_old;
   const double scale_value = scale(D_max_old), z = (D_max_old - d.D) / scale_value;
-  const double eta_value = 1.0 - std::erf(z) / p_.r;
   // d eta / dE = (2 / (r sqrt(pi) scale)) e^{-z^2} dD/dE (energy: dW/dE = S_base).
-  const Vec6 deta_dE = 2.0 * std::exp(-z * z) / (p_.r * std::sqrt(std::numbers::pi) * scale_value) * d.dD_dE;
-  if (memory_) drive_memory_with_softened_stress(r, F_new, e, eta_value, deta_dE, dt, state_new);
-  // The softening left outside the memory: eta^(1-w) (w = 0: eta, the same operations as without a share).
-  const double w = p_.relaxation_share, outer = w == 0.0 ? eta_value : std::pow(eta_value, 1.0 - w);
-  const double douter_deta = w == 0.0 ? 1.0 : (1.0 - w) * std::pow(eta_value, -w);
-  r.dS_dE = outer * r.dS_dE + douter_deta * r.S * deta_dE.transpose();
-  r.S *= outer;
-  return r;
+  return {1.0 - std::erf(z) / p_.r,
+          2.0 * std::exp(-z * z) / (p_.r * std::sqrt(std::numbers::pi) * scale_value) * d.dD_dE, false};
+}
+
+void MullinsEffect::damage(Softening& f, const Driver& n, double N_max_old, std::span<double> state_new) const {
+  const double N_max = std::max(N_max_old, n.D), factor = damage_factor(N_max);
+  own(state_new)[1] = N_max;
+  f.d_dE *= factor;
+  if (n.D >= N_max_old)  // the damage grows: eta (-dd/dE), dd/dE = (d_inf/e_d) exp(-N/e_d) dN/dE
+    f.d_dE -= f.value * (p_.damage_limit / p_.damage_strain) * std::exp(-n.D / p_.damage_strain) * n.dD_dE;
+  f.value *= factor;
+  f.first_loading_unchanged = false;
 }
 
 void MullinsEffect::drive_memory_with_softened_stress(PointResponse& r, const Mat3& F_new, const ElasticEval& e,
@@ -89,7 +119,8 @@ void MullinsEffect::drive_memory_with_softened_stress(PointResponse& r, const Ma
 
 Vec6 MullinsEffect::viscous_stress(const Mat3& F, std::span<const double> state) const {
   const double eta_value = eta(driver(F, energy_base_->evaluate(F)).D, own(state)[0]);
-  return std::pow(eta_value, 1.0 - p_.relaxation_share) * EffectDecorator::viscous_stress(F, state);
+  const double softening = eta_value * (p_.damage_limit > 0.0 ? damage_factor(own(state)[1]) : 1.0);
+  return std::pow(softening, 1.0 - p_.relaxation_share) * EffectDecorator::viscous_stress(F, state);
 }
 
 Mat6c MullinsEffect::complex_tangent(const Mat3& F_base, double omega) const {
@@ -99,7 +130,8 @@ Mat6c MullinsEffect::complex_tangent(const Mat3& F_base, double omega) const {
   const Mat6 softening = deta_dD * e.S * d.dD_dE.transpose();
   const double w = p_.relaxation_share;
   const std::complex<double> share = memory_ ? w * memory_->memory_complex_factor(F_base, omega) + (1.0 - w) : 1.0;
-  return inner_->complex_tangent(F_base, omega) + share * softening.cast<std::complex<double>>();
+  const double damage = p_.damage_limit > 0.0 ? damage_factor(biot_norm(F_base).D) : 1.0;
+  return damage * (inner_->complex_tangent(F_base, omega) + share * softening.cast<std::complex<double>>());
 }
 
 std::string MullinsEffect::describe() const {
@@ -111,6 +143,7 @@ std::string MullinsEffect::describe() const {
     o << ", m = " << p_.m * 1e3 << " kPa";
   o << ", beta = " << p_.beta;
   if (p_.relaxation_share > 0.0) o << ", relaxation share " << p_.relaxation_share;
+  if (p_.damage_limit > 0.0) o << ", damage d_inf = " << p_.damage_limit << " over e_d = " << p_.damage_strain;
   o << ") over " << inner_->describe();
   return o.str();
 }

@@ -18,6 +18,14 @@
 /// the strain form by how far the strain fell, the softening shape of strain-based damage models (Qi-Boyce-like,
 /// exponential damage in the largest strain) that the energy form follows only to about 0.05-0.1 in eta
 /// (tools/mullins_shapes.py).
+/// Damage in the largest strain (damage_limit d_inf > 0, docs/physics.md 5.2): a factor that falls on FIRST loading
+/// too and never recovers multiplies eta, and the product takes eta's place in every formula of this header
+/// (relaxation share included):
+///   eta -> eta (1 - d),  d = d_inf (1 - exp(-N_max/e_d)),  N = ||U - I|| (the Biot strain norm), N_max its largest value,
+///   deta/dE -> (1 - d) deta/dE - eta dd/dE,  dd/dE = (d_inf/e_d) exp(-N/e_d) dN/dE while N_max grows (N >= N_max^n),
+///   else 0; dN/dE = (I - U^-1)/N.
+/// With r -> infinity it is pure damage. The state then holds N_max after D_max. complex_tangent: (1 - d(N(F_base)))
+/// times the form above (the damage is constant below its maximum); viscous_stress with the stored N_max.
 /// complex_tangent: NOT a linear effect. It returns the tangent of the preconditioned (shaken-down)
 /// state at W_max = W(F_base) approached from below, i.e. the reversible tangent that a small
 /// vibration about a held preload sees after its first cycle:
@@ -54,6 +62,8 @@ struct MullinsParameters {
   double beta = 0.1;  ///< beta [-], >= 0: growth of the energy scale with W_max
   double relaxation_share = 0.0;  ///< w [-] in [0, 1]: share of the softening that drives the Prony memory
   double strain_scale = 0.0;      ///< m_e [-], >= 0: 0 drives the softening by the energy; > 0 by the Biot strain norm
+  double damage_limit = 0.0;      ///< d_inf [-] in [0, 1): 0, no damage; > 0, the damage factor above
+  double damage_strain = 0.3;     ///< e_d [-], > 0: Biot strain norm over which the damage grows
 };
 
 class MullinsEffect final : public EffectDecorator {
@@ -79,6 +89,10 @@ class MullinsEffect final : public EffectDecorator {
     Vec6 dD_dE = Vec6::Zero();
   };
   Driver driver(const Mat3& F, const ElasticEval& e) const;
+  /// The Biot strain norm N = ||U - I|| [-] at F and dN/dE (0 at F = I).
+  static Driver biot_norm(const Mat3& F);
+  /// The damage factor 1 - d [-] at the largest Biot strain norm N_max (1 without damage).
+  double damage_factor(double N_max) const;
   const MullinsParameters& parameters() const { return p_; }
 
  private:
@@ -86,6 +100,18 @@ class MullinsEffect final : public EffectDecorator {
   /// S_inner into S_visco with its tangent (formulas above).
   /// The scale of the erf's argument: m (energy) or m_e (strain) plus beta D_max.
   double scale(double D_max) const;
+  /// A softening factor [-] and its gradient [Voigt, stress-like]; first_loading_unchanged: 1 and 0 identically.
+  struct Softening {
+    double value = 1.0;
+    Vec6 d_dE = Vec6::Zero();
+    bool first_loading_unchanged = true;
+  };
+  /// eta and deta/dE at the driver d (W or the Biot strain norm at F_new) below the stored D_max_old (state_new's D_max
+  /// updated).
+  Softening ogden_roxburgh(const Driver& d, double D_max_old, std::span<double> state_new) const;
+  /// f times the damage factor 1 - d, with its gradient; n: the Biot strain norm at F_new (state_new's N_max updated
+  /// from N_max_old).
+  void damage(Softening& f, const Driver& n, double N_max_old, std::span<double> state_new) const;
   void drive_memory_with_softened_stress(PointResponse& r, const Mat3& F_new, const ElasticEval& e, double eta_value,
                                          const Vec6& deta_dE, double dt, std::span<double> state_new) const;
 

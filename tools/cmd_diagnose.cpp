@@ -117,6 +117,10 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
                       cushion::io::format_double(cushion::calibration::DiagnoseOptions{}.pair_stop_share) +
                       "; 0: never; docs/physics.md 9.21)")
       ->check(CLI::Range(0.0, 1.0));
+  sub->add_flag("--no-damage-start{false}", opt->options.damage_start,
+                "fit Mullins only from the base refit, not also from a damage start (its d_inf and e_d estimated from "
+                "the slowest quasi-static test, the hyperfoam refitted to the first loadings over 1 - d; "
+                "docs/physics.md 9.27)");
   sub->add_option("--pairs-from", opt->options.pairs_from,
                   "pairs are the best single with each of the next N - 1 singles that beat the baseline by dBIC 10 "
                   "(default " +

@@ -18,6 +18,9 @@ The generator works in 1D at nu = 0 with free laterals (stretch l = 1 - e); cush
   air-flow drag, trapped  P = Y/l^3, Y' = M0 l^-r dE/dt - Y/tau, tau = (c0/M0) l^(r - n_K) stretch_maxwell (strain measure:
                           air                                                              P' has a term 3 P e'/l more)
   Ogden-Roxburgh          s = [1 - erf((W_max - W)/(m + beta W_max))/r] s_e, before the Prony memory (relaxation share 1)
+  exponential damage      s = [1 - d_inf (1 - exp(-e_max/e_d))] s_e, before the memory    mullins damage, r 1000 (counted
+                                                                                           with the strain measures: its
+                                                                                           sweeps are not matched yet)
   Prony x J^-c            a_j -> a_j l^-c on each increment (history share 1)             power_law
   friction                k (E - E_p), |.| <= s_y on E = (l^2 - 1)/2                      jenkins (strain measure)
   stiffness damping       beta_s C_d D^q E, C_d the current (w = 1) or initial (w = 0) tangent  stiffness_proportional
@@ -71,6 +74,14 @@ def effect_of(family, p, base, where):
     if family == "mullins" and form == "ogden_roxburgh":
         return {"kind": "mullins", "r": param(p, "r", where), "m_kPa": param(p, "m_kPa", where),
                 "beta": param(p, "beta", where), "relaxation_share": 1.0}, "same"
+    if family == "mullins" and form == "exponential_damage":
+        # the Ogden-Roxburgh factor held within 1e-4 of 1 (r 1000, m_e 10), the damage on the Biot strain norm, which on
+        # the generator's path (free laterals, nu = 0) is its e_max. Not counted as the same equation: the quasi-static
+        # tests agree within 1.05x noise, but the sweeps of seed-2025 c035 and c033 differ by 2.79x and 1.61x noise
+        # (seed 2026 and 2027: within 1.11x), for a reason not found yet (docs/physics.md 9.27)
+        return {"kind": "mullins", "r": 1000.0, "strain_scale": 10.0, "relaxation_share": 1.0,
+                "damage_limit": param(p, "damage_limit", where),
+                "damage_strain": param(p, "damage_strain", where)}, "strain measure"
     if family == "strain_dependent_prony" and form == "power_law":
         return {"kind": "strain_dependent_prony", "coefficient_c": param(p, "exponent_c", where),
                 "history_share": 1.0}, "same"

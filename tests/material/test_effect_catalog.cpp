@@ -43,11 +43,20 @@ TEST(EffectCatalog, EveryEntryIsSelfDescribing) {
     EXPECT_FALSE(e.description.empty()) << e.kind;
     EXPECT_FALSE(e.parameters.empty()) << e.kind;
     EXPECT_EQ(find_effect(e.kind), &e);
+    // damage parameters: both or neither, each a parameter of the effect
+    EXPECT_EQ(e.damage_limit_parameter.empty(), e.damage_strain_parameter.empty()) << e.kind;
+    for (const std::string& name : {e.damage_limit_parameter, e.damage_strain_parameter})
+      if (!name.empty())
+        EXPECT_TRUE(
+            std::any_of(e.parameters.begin(), e.parameters.end(), [&](const auto& p) { return p.name == name; }))
+            << e.kind << ": " << name;
     for (const EffectParameterInfo& p : e.parameters) {
       EXPECT_TRUE(p.min_exclusive ? p.default_value > p.min : p.default_value >= p.min) << p.name;
       EXPECT_LE(p.default_value, p.max) << p.name;
-      if (p.log_scale) {  // positive, or 0 switches a branch off and a fit starts at a positive fit_start or second_start
-        EXPECT_TRUE(p.min > 0.0 || p.min_exclusive || p.fit_start > 0.0 || p.second_start.value_or(0.0) > 0.0)
+      if (p.log_scale) {  // positive, or 0 switches a branch off and a fit starts at a positive fit_start or second_start,
+                          // or at diagnose's damage start
+        EXPECT_TRUE(p.min > 0.0 || p.min_exclusive || p.fit_start > 0.0 || p.second_start.value_or(0.0) > 0.0 ||
+                    p.name == e.damage_limit_parameter)
             << p.name;
       }
       if (p.fit_start > 0.0) {

@@ -4,7 +4,9 @@
 // w over a Prony material the memory is driven by eta^w S_e (checked against the test's own recursion), also over
 // strain-dependent Prony beneath. The same with
 // the strain driver (strain_scale m_e > 0): the Biot strain norm D = ||U - I|| in place of W (here evaluated from the
-// eigenvalues of F^T F, not from the effect's principal decomposition; 1 - l on the confined path).
+// eigenvalues of F^T F, not from the effect's principal decomposition; 1 - l on the confined path). With damage
+// (damage_limit d_inf > 0) the factor 1 - d_inf (1 - exp(-N_max/e_d)) of the largest Biot strain norm multiplies eta,
+// on first loading too, and the tangents, the complex tangent and the memory path follow it.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -277,6 +279,88 @@ TEST(EffectMullins, NegativeStrainScaleIsRejected) {
   negative.strain_scale = -0.1;
   const auto foam = test::effect_test_foam();
   EXPECT_THROW(MullinsEffect(foam, foam, negative), std::invalid_argument);
+}
+
+MullinsParameters with_damage(MullinsParameters p, double d_inf = 0.6, double e_d = 0.15) {
+  p.damage_limit = d_inf, p.damage_strain = e_d;
+  return p;
+}
+
+TEST(EffectMullins, DamageSoftensFirstLoadingAndStaysBelowItsMaximum) {
+  // Along path() (confined, N = 1 - l): S = eta(D) (1 - d(N_max)) S_base with the closed forms, 1e-10 relative, for the
+  // energy and the strain driver; on first loading (eta = 1) the stress is already (1 - d(N)) S_base, below the base by
+  // more than 30 % at l = 0.6; reloading below the maximum retraces unloading.
+  const auto foam = test::effect_test_foam();
+  for (const MullinsParameters& driven : {kParameters, kStrainParameters}) {
+    const MullinsParameters p = with_damage(driven);
+    const MullinsEffect m(foam, foam, p);
+    const std::vector<double> l = path(), S = drive(m, l), S_base = drive(*foam, l);
+    double D_max = 0.0, N_max = 0.0;
+    for (std::size_t k = 0; k < l.size(); ++k) {
+      const double D = driver(p, *foam, confined(l[k])), N = 1.0 - l[k];
+      D_max = std::max(D_max, D), N_max = std::max(N_max, N);
+      const double scale = (p.strain_scale > 0.0 ? p.strain_scale : p.m) + p.beta * D_max;
+      const double eta = 1.0 - std::erf((D_max - D) / scale) / p.r;
+      const double factor = 1.0 - p.damage_limit * (1.0 - std::exp(-N_max / p.damage_strain));
+      EXPECT_NEAR(S[k], eta * factor * S_base[k], 1e-10 * std::abs(S_base[k])) << "l = " << l[k];
+    }
+    EXPECT_LT(std::abs(S[39]), 0.7 * std::abs(S_base[39]));  // l = 0.6, first loading
+    for (std::size_t k = 40; k < 69; ++k) EXPECT_NEAR(S[138 - k], S[k], 1e-10 * std::abs(S[k])) << "l = " << l[k];
+  }
+}
+
+TEST(EffectMullins, DamageTangentsMatchFiniteDifferences) {
+  // Random F on first loading (both maxima 0) and below previous maxima, over hyperfoam, over the Prony material
+  // (w = 0 and w = 1: the damage drives the memory) with a non-trivial state; energy and strain drivers. 1e-6 relative.
+  std::mt19937 rng(29);
+  const auto foam = test::effect_test_foam();
+  const auto visco = test::effect_test_visco();
+  for (const MullinsParameters& driven : {kParameters, kStrainParameters})
+    for (double w : {0.0, 1.0}) {
+      MullinsParameters p = with_damage(driven);
+      p.relaxation_share = w;
+      const MullinsEffect on_visco(visco, foam, p);
+      const MullinsEffect on_foam(foam, foam, with_damage(driven));
+      for (int trial = 0; trial < 4; ++trial) {
+        const Mat3 F_old = test::random_F(rng, 0.25), F = test::random_F(rng, 0.25);
+        for (bool below : {true, false}) {
+          const double D_max = below ? maximum_above(p, *foam, F) : 0.0,
+                       N_max = below ? 1.3 * biot_norm(F) + 0.05 : 0.0;
+          EXPECT_LT(test::increment_tangent_error(on_foam, F_old, F, 0.05, {D_max, N_max}), 1e-6) << "trial " << trial;
+          std::vector<double> state(on_visco.state_size()), next(on_visco.state_size());
+          on_visco.initial_state(state);
+          on_visco.integrate(Mat3::Identity(), F_old, 0.05, state, next);
+          next[next.size() - 2] = D_max, next.back() = N_max;
+          EXPECT_LT(test::increment_tangent_error(on_visco, F_old, F, 0.05, next), 1e-6)
+              << "w = " << w << ", trial " << trial << (below ? " below" : " loading");
+        }
+      }
+    }
+}
+
+TEST(EffectMullins, DamageComplexTangentIsTheReversibleTangentAtTheMaximum) {
+  // With damage, complex_tangent(F_b) equals the increment tangent just below both maxima (1e-8 relative) and is
+  // (1 - d(N_b)) times the tangent without damage.
+  const auto foam = test::effect_test_foam();
+  const Mat3 F_b = Vec3(0.75, 0.98, 0.98).asDiagonal();
+  for (const MullinsParameters& driven : {kParameters, kStrainParameters}) {
+    const MullinsParameters p = with_damage(driven);
+    const MullinsEffect m(foam, foam, p), undamaged(foam, foam, driven);
+    std::vector<double> state{driver(p, *foam, F_b) * (1.0 + 1e-12), biot_norm(F_b) * (1.0 + 1e-12)}, next(2);
+    const PointResponse r = m.integrate(F_b, F_b, 1.0, state, next);
+    const Mat6c C = m.complex_tangent(F_b, 10.0);
+    EXPECT_LT(test::rel_diff(r.dS_dE, C.real().eval()), 1e-8);
+    const double factor = 1.0 - p.damage_limit * (1.0 - std::exp(-biot_norm(F_b) / p.damage_strain));
+    EXPECT_LT(test::rel_diff(C.real().eval(), (factor * undamaged.complex_tangent(F_b, 10.0).real()).eval()), 1e-12);
+    EXPECT_LT(factor, 0.8);
+  }
+}
+
+TEST(EffectMullins, DamageOutsideItsRangeIsRejected) {
+  const auto foam = test::effect_test_foam();
+  EXPECT_THROW(MullinsEffect(foam, foam, with_damage(kParameters, 1.0)), std::invalid_argument);
+  EXPECT_THROW(MullinsEffect(foam, foam, with_damage(kParameters, -0.1)), std::invalid_argument);
+  EXPECT_THROW(MullinsEffect(foam, foam, with_damage(kParameters, 0.5, 0.0)), std::invalid_argument);
 }
 
 }  // namespace

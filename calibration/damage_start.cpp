@@ -1,0 +1,120 @@
+#include "calibration/damage_start.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <limits>
+
+#include "calibration/refit.hpp"
+#include "calibration/segments.hpp"
+
+namespace cushion::calibration {
+namespace {
+
+/// Loading stress of `rec` [MPa] at strain e by linear interpolation over the loading samples [begin, end] (strain
+/// increasing within noise: the last sample at or below e and the next one).
+double loading_stress(const StressStrainRecord& rec, const Segments& s, double e) {
+  std::size_t j = s.load_begin;
+  while (j + 1 < s.load_end && rec.strain[j + 1] <= e) ++j;
+  const double de = rec.strain[j + 1] - rec.strain[j];
+  const double w = de > 0.0 ? std::clamp((e - rec.strain[j]) / de, 0.0, 1.0) : 0.0;
+  return (1.0 - w) * rec.stress[j] + w * rec.stress[j + 1];
+}
+
+/// The unloading samples of a record within (0, peak strain] beside its loading stress at the same strain.
+struct UnloadingPairs {
+  std::vector<double> strain, unloading, loading;  ///< [-], [MPa], [MPa]
+};
+UnloadingPairs unloading_pairs(const StressStrainRecord& rec, const Segments& s) {
+  UnloadingPairs p;
+  for (std::size_t j = s.unload_begin; j <= s.unload_end; ++j) {
+    const double e = rec.strain[j];
+    if (!(e > 0.0) || e > s.peak_strain) continue;
+    p.strain.push_back(e);
+    p.unloading.push_back(rec.stress[j]);
+    p.loading.push_back(loading_stress(rec, s, e));
+  }
+  return p;
+}
+
+/// Sum of squared differences [MPa^2] between the unloading and the loading times (1 - d(e_p))/(1 - d(e)).
+double unloading_misfit(const UnloadingPairs& p, double peak_strain, const LoadingDamage& d) {
+  const double at_peak = d.factor(peak_strain);
+  double sum = 0.0;
+  for (std::size_t j = 0; j < p.strain.size(); ++j) {
+    const double r = p.unloading[j] - p.loading[j] * at_peak / d.factor(p.strain[j]);
+    sum += r * r;
+  }
+  return sum;
+}
+
+/// The first loading of `t` as a refit target: its stresses over 1 - d(e), its segments cut at the peak (no hold, no
+/// unloading), each sample weighed by its noise estimate. `scaled` holds the test with the divided record.
+QuasiStaticTarget first_loading_target(const QuasiStaticTest& t, const TestNoise& noise, const LoadingDamage& d,
+                                       QuasiStaticTest& scaled) {
+  scaled = t;
+  QuasiStaticTarget q{&scaled, detect_segments(t.record), {}};
+  for (std::size_t i = q.segments.load_begin; i <= q.segments.load_end; ++i)
+    scaled.record.stress[i] /= d.factor(std::max(0.0, scaled.record.strain[i]));
+  q.segments.unload_begin = q.segments.unload_end = q.segments.load_end + 1;
+  q.segments.hold_duration = 0.0;
+  q.segments.lift_off = false;
+  for (std::size_t i = 0; i < noise.stress_local.size(); ++i) {
+    const double over = i <= q.segments.load_end ? d.factor(std::max(0.0, scaled.record.strain[i])) : 1.0;
+    q.stress_sigma.push_back(noise.stress_weighting(noise.stress_local[i]) / over);
+  }
+  return q;
+}
+
+}  // namespace
+
+double LoadingDamage::factor(double e_max) const { return 1.0 - limit * -std::expm1(-e_max / strain); }
+
+std::optional<LoadingDamage> estimate_loading_damage(const Campaign& campaign) {
+  const QuasiStaticTest* slowest = nullptr;
+  for (const QuasiStaticTest& t : campaign.quasi_static)
+    if (t.prior.preflex_cycles == 0 && (!slowest || t.rate < slowest->rate)) slowest = &t;
+  if (!slowest) return std::nullopt;
+  const Segments s = detect_segments(slowest->record);
+  if (s.load_end <= s.load_begin || s.unload_end <= s.unload_begin) return std::nullopt;
+  const UnloadingPairs pairs = unloading_pairs(slowest->record, s);
+  LoadingDamage best;
+  double best_misfit = std::numeric_limits<double>::infinity();
+  for (int k = 0; k <= 24; ++k)
+    for (int n = 0; n <= 49; ++n) {
+      const LoadingDamage d{0.02 * n, 0.03 * std::pow(100.0, k / 24.0)};
+      const double misfit = unloading_misfit(pairs, s.peak_strain, d);
+      if (misfit < best_misfit) best_misfit = misfit, best = d;
+    }
+  return best;
+}
+
+std::optional<material::MaterialSpec> damaged_loading_base(const material::MaterialSpec& base, const Campaign& campaign,
+                                                           const std::vector<TestNoise>& noise,
+                                                           const LoadingDamage& damage) {
+  if (base.base != material::MaterialSpec::Base::hyperfoam || base.hyperfoam.empty() || base.prony.empty() ||
+      base.moduli != material::ModuliConvention::long_term)
+    return std::nullopt;
+  try {
+    std::vector<QuasiStaticTest> scaled(campaign.quasi_static.size());  // the targets point into it
+    std::vector<QuasiStaticTarget> loadings;
+    for (std::size_t k = 0; k < campaign.quasi_static.size(); ++k) {
+      const QuasiStaticTest& t = campaign.quasi_static[k];
+      if (t.prior.preflex_cycles > 0 || !noise[k].known) continue;  // not a virgin specimen; no weights
+      QuasiStaticTarget q = first_loading_target(t, noise[k], damage, scaled[k]);
+      if (q.segments.load_end + 2 < t.record.time.size()) loadings.push_back(std::move(q));
+    }
+    if (loadings.empty()) return std::nullopt;
+    RefitOptions o;
+    o.noise_weighted = true;
+    const RefitResult r = refit({base.hyperfoam, base.prony}, campaign.specimen, loadings, {}, o);
+    if (!r.converged || !r.stable) return std::nullopt;
+    material::MaterialSpec s = base;
+    s.hyperfoam = r.material.terms;
+    return s;
+  } catch (const std::exception&) {
+    return std::nullopt;  // no usable refit: the start is not made
+  }
+}
+
+}  // namespace cushion::calibration
