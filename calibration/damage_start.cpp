@@ -7,32 +7,30 @@
 
 #include "calibration/refit.hpp"
 #include "calibration/segments.hpp"
+#include "material/effect_mullins.hpp"
 
 namespace cushion::calibration {
 namespace {
 
-/// Loading stress of `rec` [MPa] at strain e by linear interpolation over the loading samples [begin, end] (strain
-/// increasing within noise: the last sample at or below e and the next one).
-double loading_stress(const StressStrainRecord& rec, const Segments& s, double e) {
-  std::size_t j = s.load_begin;
-  while (j + 1 < s.load_end && rec.strain[j + 1] <= e) ++j;
-  const double de = rec.strain[j + 1] - rec.strain[j];
-  const double w = de > 0.0 ? std::clamp((e - rec.strain[j]) / de, 0.0, 1.0) : 0.0;
-  return (1.0 - w) * rec.stress[j] + w * rec.stress[j + 1];
-}
-
-/// The unloading samples of a record within (0, peak strain] beside its loading stress at the same strain.
+/// The unloading samples of a record within (0, peak strain] beside its loading stress at the same strain (segments.hpp
+/// interpolate over the loading branch, kept increasing through noise).
 struct UnloadingPairs {
   std::vector<double> strain, unloading, loading;  ///< [-], [MPa], [MPa]
 };
 UnloadingPairs unloading_pairs(const StressStrainRecord& rec, const Segments& s) {
+  std::vector<double> load_e, load_s;
+  for (std::size_t i = s.load_begin; i <= s.load_end; ++i) {
+    if (!load_e.empty() && rec.strain[i] <= load_e.back()) continue;
+    load_e.push_back(rec.strain[i]);
+    load_s.push_back(rec.stress[i]);
+  }
   UnloadingPairs p;
   for (std::size_t j = s.unload_begin; j <= s.unload_end; ++j) {
     const double e = rec.strain[j];
     if (!(e > 0.0) || e > s.peak_strain) continue;
     p.strain.push_back(e);
     p.unloading.push_back(rec.stress[j]);
-    p.loading.push_back(loading_stress(rec, s, e));
+    p.loading.push_back(interpolate(load_e, load_s, e));
   }
   return p;
 }
@@ -54,21 +52,23 @@ QuasiStaticTarget first_loading_target(const QuasiStaticTest& t, const TestNoise
                                        QuasiStaticTest& scaled) {
   scaled = t;
   QuasiStaticTarget q{&scaled, detect_segments(t.record), {}};
-  for (std::size_t i = q.segments.load_begin; i <= q.segments.load_end; ++i)
-    scaled.record.stress[i] /= d.factor(std::max(0.0, scaled.record.strain[i]));
   q.segments.unload_begin = q.segments.unload_end = q.segments.load_end + 1;
   q.segments.hold_duration = 0.0;
   q.segments.lift_off = false;
-  for (std::size_t i = 0; i < noise.stress_local.size(); ++i) {
-    const double over = i <= q.segments.load_end ? d.factor(std::max(0.0, scaled.record.strain[i])) : 1.0;
-    q.stress_sigma.push_back(noise.stress_weighting(noise.stress_local[i]) / over);
+  for (double local : noise.stress_local) q.stress_sigma.push_back(noise.stress_weighting(local));
+  for (std::size_t i = q.segments.load_begin; i <= q.segments.load_end; ++i) {  // stress and its noise over 1 - d
+    const double factor = d.factor(std::max(0.0, scaled.record.strain[i]));
+    scaled.record.stress[i] /= factor;
+    if (i < q.stress_sigma.size()) q.stress_sigma[i] /= factor;
   }
   return q;
 }
 
 }  // namespace
 
-double LoadingDamage::factor(double e_max) const { return 1.0 - limit * -std::expm1(-e_max / strain); }
+double LoadingDamage::factor(double e_max) const {
+  return material::MullinsEffect::damage_factor(limit, strain, e_max);
+}
 
 std::optional<LoadingDamage> estimate_loading_damage(const Campaign& campaign) {
   const QuasiStaticTest* slowest = nullptr;

@@ -7,7 +7,6 @@
 #include <functional>
 #include <iomanip>
 #include <limits>
-#include <memory>
 #include <mutex>
 #include <numeric>
 #include <sstream>
@@ -973,9 +972,8 @@ std::optional<std::function<CandidateFit()>> damage_start_job(const CandidateJob
   const std::optional<LoadingDamage> damage = estimate_loading_damage(c.campaign);
   if (!damage) return std::nullopt;
   log << "diagnose: " << single[0].kind << " damage start: d_inf " << fmt(damage->limit) << ", e_d "
-      << fmt(damage->strain)
-      << " from the slowest quasi-static test, the hyperfoam refitted to the first loadings over "
-      << "1 - d\n";
+      << fmt(damage->strain) << " from the slowest quasi-static test, the hyperfoam refitted to the first loadings "
+      << "over 1 - d\n";
   std::vector<material::EffectSpec> start = single;
   start[0].parameters[info->damage_limit_parameter] = std::max(damage->limit, 0.01);  // 0 would hold the branch off
   start[0].parameters[info->damage_strain_parameter] = damage->strain;

@@ -34,10 +34,6 @@ MullinsEffect::MullinsEffect(std::shared_ptr<const Material> inner, std::shared_
     throw std::invalid_argument("mullins: damage_strain must be > 0");
 }
 
-double MullinsEffect::damage_factor(double N_max) const {
-  return 1.0 - p_.damage_limit * -std::expm1(-N_max / p_.damage_strain);
-}
-
 double MullinsEffect::scale(double D_max) const {
   return (p_.strain_scale > 0.0 ? p_.strain_scale : p_.m) + p_.beta * D_max;
 }

@@ -49,6 +49,8 @@
 /// complex_tangent about the shaken-down base: C* = C*_inner + [w f(omega) + 1 - w] S_base (x) deta/dE,
 /// f(omega) the memory's complex factor (Viscoelastic: 1 + sum a_i i omega tau_i/(1 + i omega tau_i); the memory
 /// sees the softening's part w).
+#include <cmath>
+
 #include "material/effect_decorator.hpp"
 #include "material/hyperelastic.hpp"
 #include "material/viscoelastic.hpp"
@@ -92,7 +94,12 @@ class MullinsEffect final : public EffectDecorator {
   /// The Biot strain norm N = ||U - I|| [-] at F and dN/dE (0 at F = I).
   static Driver biot_norm(const Mat3& F);
   /// The damage factor 1 - d [-] at the largest Biot strain norm N_max (1 without damage).
-  double damage_factor(double N_max) const;
+  double damage_factor(double N_max) const { return damage_factor(p_.damage_limit, p_.damage_strain, N_max); }
+  /// 1 - d_inf (1 - exp(-N_max/e_d)) [-] (d_inf, e_d, N_max [-]): the one formula of the damage, also for diagnose's
+  /// damage start (calibration/damage_start.hpp).
+  static double damage_factor(double damage_limit, double damage_strain, double N_max) {
+    return 1.0 - damage_limit * -std::expm1(-N_max / damage_strain);
+  }
   const MullinsParameters& parameters() const { return p_; }
 
  private:
