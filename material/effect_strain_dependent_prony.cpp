@@ -7,14 +7,27 @@
 namespace cushion::material {
 
 StrainDependentPronyEffect::StrainDependentPronyEffect(std::shared_ptr<const Viscoelastic> inner, double coefficient_c,
-                                                       double history_share)
-    : EffectDecorator(inner, 0), visco_(std::move(inner)), c_(coefficient_c), w_(history_share) {
+                                                       double history_share, double strain_measure_share)
+    : EffectDecorator(inner, 0),
+      visco_(std::move(inner)),
+      c_(coefficient_c),
+      w_(history_share),
+      s_(strain_measure_share) {
   if (!std::isfinite(c_)) throw std::invalid_argument("strain_dependent_prony: coefficient c must be finite");
   if (!(w_ >= 0.0 && w_ <= 1.0))
     throw std::invalid_argument("strain_dependent_prony: history_share must lie in [0, 1]");
+  if (!(s_ >= 0.0 && s_ <= 1.0))
+    throw std::invalid_argument("strain_dependent_prony: strain_measure_share must lie in [0, 1]");
 }
 
-double StrainDependentPronyEffect::factor(double J) const { return std::pow(J, -c_); }
+double StrainDependentPronyEffect::factor(double J) const {
+  return std::exp(c_ * ((1.0 - s_) * -std::log(J) + s_ * (1.0 - J)));
+}
+
+Vec6 StrainDependentPronyEffect::dfactor_dE(const Mat3& F) const {
+  const double J = F.determinant();
+  return -c_ * factor(J) * ((1.0 - s_) / J + s_) * dJ_dE(F);
+}
 
 PointResponse StrainDependentPronyEffect::integrate(const Mat3& F_old, const Mat3& F_new, double dt,
                                                     std::span<const double> state_old,
@@ -24,8 +37,8 @@ PointResponse StrainDependentPronyEffect::integrate(const Mat3& F_old, const Mat
   // The Viscoelastic state starts with S_inf at F_new; its viscous part is r.S - S_inf = sum a_i H_i.
   const Vec6 S_inf = Eigen::Map<const Vec6>(state_new.data());
   const Mat6 C_inf = visco_->long_term_base().evaluate(F_new).dS_dE;
-  const double J = F_new.determinant(), phi = factor(J);
-  const Vec6 dphi_dE = -c_ * phi / J * dJ_dE(F_new);
+  const double phi = factor(F_new.determinant());
+  const Vec6 dphi_dE = dfactor_dE(F_new);
   Vec6 V = r.S - S_inf;              // sum a_i H_i of the inner (unweighted) update
   const Mat6 A_C = r.dS_dE - C_inf;  // A C_inf, the inner viscous tangent
   Mat6 dV_dE = A_C;
@@ -58,14 +71,14 @@ std::complex<double> StrainDependentPronyEffect::memory_complex_factor(const Mat
 
 MemoryGain StrainDependentPronyEffect::drive_memory(const Mat3& F_new, std::span<double> state_new, double dt,
                                                     const Vec6& dS) const {
-  const double J = F_new.determinant(), phi = factor(J);
+  const double phi = factor(F_new.determinant());
   const double A = visco_->add_to_memory(state_new, dt, std::pow(phi, w_) * dS);  // sum a_i q_i
-  return {phi * A, -c_ * phi / J * A * dJ_dE(F_new)};
+  return {phi * A, A * dfactor_dE(F_new)};
 }
 
 std::string StrainDependentPronyEffect::describe() const {
   std::ostringstream o;
-  o << "strain-dependent Prony moduli (f = J^-c, c = " << c_;
+  o << "strain-dependent Prony moduli (f = exp(c g), g = (1 - s)(-ln J) + s (1 - J), c = " << c_ << ", s = " << s_;
   if (w_ > 0.0) o << ", history share " << w_;
   o << ") over " << visco_->describe();
   return o.str();

@@ -85,6 +85,10 @@ def effect_of(family, p, base, where):
     if family == "strain_dependent_prony" and form == "power_law":
         return {"kind": "strain_dependent_prony", "coefficient_c": param(p, "exponent_c", where),
                 "history_share": 1.0}, "same"
+    if family == "strain_dependent_prony" and form == "exponential":
+        # exp(k e) of the nominal compression e = 1 - l; on the generator's path (free laterals, nu = 0) J = l
+        return {"kind": "strain_dependent_prony", "coefficient_c": param(p, "rate_k", where), "history_share": 1.0,
+                "strain_measure_share": 1.0}, "same"
     if family == "friction" and form == "jenkins":
         return {"kind": "friction", "stiffness_kPa": param(p, "stiffness_kPa", where),
                 "yield_stress_kPa": param(p, "yield_stress_kPa", where)}, "strain measure"

@@ -6,8 +6,9 @@
 Generates the diagnose benchmark's seed-2025 campaigns (60: 40 singles, 10 pairs, 10 controls; 5 s), writes each truth
 in cushion's catalogue with tools/foreign_truth.py and compares it with its campaign (`cushion compare`). Asserts:
   - every campaign whose effects all map to the same equation (Ogden-Roxburgh Mullins, Darcy and power-law air flow,
-    power-law strain-dependent Prony) is reproduced within 1.5x noise on every test (measured 2026-12-04: at most 1.49,
-    c009): cushion's forward model and effect forms agree with a code written apart from them;
+    power-law and exponential strain-dependent Prony) is reproduced within 1.5x noise on every test (measured
+    2026-12-04: at most 1.49, c009; the exponential Prony factor, strain_measure_share 1, added 2026-12-05: c022 1.04,
+    c029 1.09, c039 1.01): cushion's forward model and effect forms agree with a code written apart from them;
   - every form without a counterpart makes the script exit 3 and write nothing; a missing truth.json or key exit 2
     with one line naming the file and key.
 The campaigns mapped on another strain measure (Jenkins friction, stiffness-proportional and fractional damping, the

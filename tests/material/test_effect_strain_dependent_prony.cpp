@@ -2,7 +2,8 @@
 // small-amplitude relaxation at two preloads differs by f(J1)/f(J2)), reduces to the plain Prony model
 // at c = 0, has an exact increment tangent, and its complex tangent matches a time-domain sine, for the history
 // share w = 0 (the current J scales the stored stress) and w = 1 (each increment keeps the f of its own J), whose
-// two-step relaxation follows the closed forms.
+// two-step relaxation follows the closed forms; with the strain measure share s = 1, f(J) = exp(c (1 - J)) (an
+// exponential in the nominal compression) in the same closed forms and tangents.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -81,11 +82,13 @@ TEST(EffectStrainDependentProny, ZeroCoefficientIsThePlainPronyModel) {
 }
 
 TEST(EffectStrainDependentProny, TangentMatchesFiniteDifferences) {
-  // Random F, state after random increments (non-zero H_i), dt = 0.05 s, c = 1.5 and -0.7; 1e-6 relative.
+  // Random F, state after random increments (non-zero H_i), dt = 0.05 s, c = 1.5, -0.7 and 2.5, strain measure shares
+  // s = 0, 0.6, 1; 1e-6 relative.
   std::mt19937 rng(23);
   const auto visco = test::effect_test_visco();
-  for (const auto& [c, w] : {std::pair{1.5, 0.0}, std::pair{-0.7, 0.0}, std::pair{1.5, 1.0}, std::pair{-0.7, 0.4}}) {
-    const StrainDependentPronyEffect m(visco, c, w);
+  for (const auto& [c, w, s] : {std::tuple{1.5, 0.0, 0.0}, std::tuple{-0.7, 0.0, 0.0}, std::tuple{1.5, 1.0, 0.0},
+                                std::tuple{-0.7, 0.4, 0.0}, std::tuple{1.5, 1.0, 1.0}, std::tuple{2.5, 0.3, 0.6}}) {
+    const StrainDependentPronyEffect m(visco, c, w, s);
     for (int trial = 0; trial < 4; ++trial) {
       std::vector<double> state(m.state_size()), next(m.state_size());
       m.initial_state(state);
@@ -96,7 +99,7 @@ TEST(EffectStrainDependentProny, TangentMatchesFiniteDifferences) {
         state.swap(next), F_old = F;
       }
       EXPECT_LT(test::increment_tangent_error(m, F_old, test::random_F(rng, 0.25), 0.05, state), 1e-6)
-          << "c = " << c << ", w = " << w << ", trial " << trial;
+          << "c = " << c << ", w = " << w << ", s = " << s << ", trial " << trial;
     }
   }
 }
@@ -108,34 +111,39 @@ TEST(EffectStrainDependentProny, HistoryShareWeightsEachIncrementByItsOwnCompres
   //   w = 1: S - S_inf = sum a_i [f(l1) dS1 e^{-(t1+t2)/tau_i} + f(l2) dS2 e^{-t2/tau_i}],
   //   w = 0: S - S_inf = f(l2) sum a_i [dS1 e^{-(t1+t2)/tau_i} + dS2 e^{-t2/tau_i}];
   // tolerance 1e-10 relative (the recursion is exact for steps and holds). The two differ by far more (checked).
+  // The same with the strain measure share s = 1: f(l) = exp(c (1 - l)) in place of l^-c (J = l, confined).
   const auto visco = test::effect_test_visco();
   const double l1 = 0.8, l2 = 0.6, t1 = 0.03, t2 = 0.02, c = 1.5;
   const Vec6 S0 = visco->long_term_base().evaluate(Mat3::Identity()).S;
   const Vec6 S1 = visco->long_term_base().evaluate(confined(l1)).S,
              S2 = visco->long_term_base().evaluate(confined(l2)).S;
-  Vec6 expected[2] = {Vec6::Zero(), Vec6::Zero()};  // w = 0, w = 1
-  const double f1 = std::pow(l1, -c), f2 = std::pow(l2, -c);
-  for (std::size_t i = 0; i < visco->terms().size(); ++i) {
-    const double a = visco->relative_to_long_term()[i], tau = visco->terms()[i].tau;
-    expected[0] += f2 * a * ((S1 - S0) * std::exp(-(t1 + t2) / tau) + (S2 - S1) * std::exp(-t2 / tau));
-    expected[1] += a * (f1 * (S1 - S0) * std::exp(-(t1 + t2) / tau) + f2 * (S2 - S1) * std::exp(-t2 / tau));
-  }
-  EXPECT_GT((expected[1] - expected[0]).norm(), 0.05 * expected[1].norm());
-  for (int w = 0; w <= 1; ++w) {
-    const StrainDependentPronyEffect m(visco, c, w);
-    std::vector<double> state(m.state_size()), next(m.state_size());
-    m.initial_state(state);
-    Vec6 S;
-    for (const auto& [F_old, F_new, dt] :
-         {std::tuple{Mat3(Mat3::Identity()), confined(l1), 0.0}, std::tuple{confined(l1), confined(l1), t1},
-          std::tuple{confined(l1), confined(l2), 0.0}, std::tuple{confined(l2), confined(l2), t2}}) {
-      S = m.integrate(F_old, F_new, dt, state, next).S;
-      state.swap(next);
+  for (int s = 0; s <= 1; ++s) {
+    Vec6 expected[2] = {Vec6::Zero(), Vec6::Zero()};  // w = 0, w = 1
+    const double f1 = s == 0 ? std::pow(l1, -c) : std::exp(c * (1.0 - l1)),
+                 f2 = s == 0 ? std::pow(l2, -c) : std::exp(c * (1.0 - l2));
+    for (std::size_t i = 0; i < visco->terms().size(); ++i) {
+      const double a = visco->relative_to_long_term()[i], tau = visco->terms()[i].tau;
+      expected[0] += f2 * a * ((S1 - S0) * std::exp(-(t1 + t2) / tau) + (S2 - S1) * std::exp(-t2 / tau));
+      expected[1] += a * (f1 * (S1 - S0) * std::exp(-(t1 + t2) / tau) + f2 * (S2 - S1) * std::exp(-t2 / tau));
     }
-    EXPECT_LT(test::rel_diff(S - S2, expected[w]), 1e-10) << "w = " << w;
-    EXPECT_LT(test::rel_diff(m.viscous_stress(confined(l2), state), expected[w]), 1e-10) << "w = " << w;
+    EXPECT_GT((expected[1] - expected[0]).norm(), 0.05 * expected[1].norm());
+    for (int w = 0; w <= 1; ++w) {
+      const StrainDependentPronyEffect m(visco, c, w, s);
+      std::vector<double> state(m.state_size()), next(m.state_size());
+      m.initial_state(state);
+      Vec6 S;
+      for (const auto& [F_old, F_new, dt] :
+           {std::tuple{Mat3(Mat3::Identity()), confined(l1), 0.0}, std::tuple{confined(l1), confined(l1), t1},
+            std::tuple{confined(l1), confined(l2), 0.0}, std::tuple{confined(l2), confined(l2), t2}}) {
+        S = m.integrate(F_old, F_new, dt, state, next).S;
+        state.swap(next);
+      }
+      EXPECT_LT(test::rel_diff(S - S2, expected[w]), 1e-10) << "w = " << w;
+      EXPECT_LT(test::rel_diff(m.viscous_stress(confined(l2), state), expected[w]), 1e-10) << "w = " << w;
+    }
   }
   EXPECT_THROW(StrainDependentPronyEffect(visco, c, 1.2), std::invalid_argument);
+  EXPECT_THROW(StrainDependentPronyEffect(visco, c, 0.0, -0.1), std::invalid_argument);
 }
 
 TEST(EffectStrainDependentProny, ComplexTangentMatchesTimeDomainSine) {

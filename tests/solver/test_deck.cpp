@@ -14,9 +14,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// A one-element deck with the material lines `material`, written to a temporary file.
+/// A one-element deck with the material lines `material`, written to a temporary file named after the running test
+/// and `name` (ctest runs this binary's tests in parallel processes: a shared name let one test read another's deck).
 fs::path deck_with(const std::string& material, const std::string& name = "deck.inp") {
-  const fs::path file = fs::temp_directory_path() / ("cushion_test_deck_" + name);
+  const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  const fs::path file = fs::temp_directory_path() / ("cushion_test_deck_" + test + "_" + name);
   std::ofstream(file) << "*NODE\n1,0,0,0\n2,1,0,0\n3,0,1,0\n4,0,0,1\n*ELEMENT, TYPE=C3D4, ELSET=E\n1,1,2,3,4\n"
                          "*MATERIAL, NAME=M\n"
                       << material
