@@ -12,17 +12,37 @@
 namespace cushion::calibration {
 namespace {
 
-/// The unloading samples of a record within (0, peak strain] beside its loading stress at the same strain (segments.hpp
-/// interpolate over the loading branch, kept increasing through noise).
-struct UnloadingPairs {
-  std::vector<double> strain, unloading, loading;  ///< [-], [MPa], [MPa]
+/// One branch of a loop as a function of the strain: the samples [begin, end) of (strain, stress) in the order of
+/// increasing strain (an unloading branch read backwards), those that do not increase the strain left out (noise, hold).
+struct Branch {
+  std::vector<double> strain, stress;  ///< [-], [MPa]
+  double at(double e) const { return interpolate(strain, stress, e); }
 };
-UnloadingPairs unloading_pairs(const StressStrainRecord& rec, const Segments& s) {
-  std::vector<double> load_e, load_s;
-  for (std::size_t i = s.load_begin; i <= s.load_end; ++i) {
-    if (!load_e.empty() && rec.strain[i] <= load_e.back()) continue;
-    load_e.push_back(rec.strain[i]);
-    load_s.push_back(rec.stress[i]);
+Branch branch(const std::vector<double>& strain, const std::vector<double>& stress, std::size_t begin, std::size_t end,
+              bool backwards) {
+  Branch b;
+  for (std::size_t k = begin; k < end; ++k) {
+    const std::size_t i = backwards ? begin + end - 1 - k : k;
+    if (!b.strain.empty() && strain[i] <= b.strain.back()) continue;
+    b.strain.push_back(strain[i]);
+    b.stress.push_back(stress[i]);
+  }
+  return b;
+}
+
+/// The unloading samples of a record within (0, peak strain] beside its loading stress at the same strain (the loading
+/// branch interpolated), and the viscous ratio expected there without damage: the reference model's unloading over its
+/// loading at that strain, in [0, 1] (1 without a reference).
+struct UnloadingPairs {
+  std::vector<double> strain, unloading, loading, viscous_ratio;  ///< [-], [MPa], [MPa], [-]
+};
+UnloadingPairs unloading_pairs(const StressStrainRecord& rec, const Segments& s, const TestCompare* reference) {
+  const Branch loading = branch(rec.strain, rec.stress, s.load_begin, s.load_end + 1, false);
+  std::optional<Branch> model_loading, model_unloading;
+  if (reference) {
+    const std::size_t n = reference->x.size(), u = std::min(reference->unload_begin, n);
+    model_loading = branch(reference->x, reference->model, 0, u, false);
+    model_unloading = branch(reference->x, reference->model, u, n, true);
   }
   UnloadingPairs p;
   for (std::size_t j = s.unload_begin; j <= s.unload_end; ++j) {
@@ -30,17 +50,24 @@ UnloadingPairs unloading_pairs(const StressStrainRecord& rec, const Segments& s)
     if (!(e > 0.0) || e > s.peak_strain) continue;
     p.strain.push_back(e);
     p.unloading.push_back(rec.stress[j]);
-    p.loading.push_back(interpolate(load_e, load_s, e));
+    p.loading.push_back(loading.at(e));
+    double ratio = 1.0;
+    if (reference && model_loading->strain.size() > 1 && model_unloading->strain.size() > 1) {
+      const double load = model_loading->at(e);
+      ratio = load > 0.0 ? std::clamp(model_unloading->at(e) / load, 0.0, 1.0) : 1.0;
+    }
+    p.viscous_ratio.push_back(ratio);
   }
   return p;
 }
 
-/// Sum of squared differences [MPa^2] between the unloading and the loading times (1 - d(e_p))/(1 - d(e)).
+/// Sum of squared differences [MPa^2] between the unloading and the loading times its viscous ratio times
+/// (1 - d(e_p))/(1 - d(e)).
 double unloading_misfit(const UnloadingPairs& p, double peak_strain, const LoadingDamage& d) {
   const double at_peak = d.factor(peak_strain);
   double sum = 0.0;
   for (std::size_t j = 0; j < p.strain.size(); ++j) {
-    const double r = p.unloading[j] - p.loading[j] * at_peak / d.factor(p.strain[j]);
+    const double r = p.unloading[j] - p.loading[j] * p.viscous_ratio[j] * at_peak / d.factor(p.strain[j]);
     sum += r * r;
   }
   return sum;
@@ -70,14 +97,20 @@ double LoadingDamage::factor(double e_max) const {
   return material::MullinsEffect::damage_factor(limit, strain, e_max);
 }
 
-std::optional<LoadingDamage> estimate_loading_damage(const Campaign& campaign) {
+std::optional<LoadingDamage> estimate_loading_damage(const Campaign& campaign, const CompareResult* reference) {
   const QuasiStaticTest* slowest = nullptr;
   for (const QuasiStaticTest& t : campaign.quasi_static)
     if (t.prior.preflex_cycles == 0 && (!slowest || t.rate < slowest->rate)) slowest = &t;
   if (!slowest) return std::nullopt;
   const Segments s = detect_segments(slowest->record);
   if (s.load_end <= s.load_begin || s.unload_end <= s.unload_begin) return std::nullopt;
-  const UnloadingPairs pairs = unloading_pairs(slowest->record, s);
+  const TestCompare* model = nullptr;
+  if (reference)
+    for (const TestCompare& t : reference->tests)
+      if (t.kind == "quasi_static" && t.name == slowest->name && t.failure.empty() && t.noise.known &&
+          t.noise_ratio() <= reference_noise_ratio)
+        model = &t;
+  const UnloadingPairs pairs = unloading_pairs(slowest->record, s, model);
   LoadingDamage best;
   double best_misfit = std::numeric_limits<double>::infinity();
   for (int k = 0; k <= 24; ++k)

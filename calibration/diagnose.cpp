@@ -961,19 +961,26 @@ EarlyStop damage_start_stop(const CandidateJobs& c) {
 /// estimated from the slowest quasi-static test (logged), and a job that refits the base refit's hyperfoam to the first
 /// loadings over 1 - d(e) (calibration/damage_start.hpp; inside the job, so that it runs beside the other singles) and
 /// then fits the single from there with Levenberg-Marquardt (no start scan: the scan of the effect's six parameters
-/// cost about 250 model runs on seed-2027 c017 and c036 and ended no better). None when options.damage_start is off or
-/// the base refit did not converge; a job whose base cannot be refitted returns a failed fit (dBIC -inf).
+/// cost about 250 model runs on seed-2027 c017 and c036 and ended no better). None when options.damage_start is off,
+/// the base refit did not converge or the estimate finds no damage (d_inf 0: on 13 air-flow and damping campaigns of
+/// seeds 2026 and 2027 that start never gave Mullins its best fit); a job whose base cannot be refitted returns a failed
+/// fit (dBIC -inf).
 std::optional<std::function<CandidateFit()>> damage_start_job(const CandidateJobs& c,
                                                               const std::vector<material::EffectSpec>& single,
                                                               std::ostream& log) {
   const material::EffectInfo* info = material::find_effect(single[0].kind);
   if (!c.options.damage_start || info->damage_limit_parameter.empty() || !c.d.base_refit || !c.d.base_refit->converged)
     return std::nullopt;
-  const std::optional<LoadingDamage> damage = estimate_loading_damage(c.campaign);
+  const std::optional<LoadingDamage> damage = estimate_loading_damage(c.campaign, &c.d.base_refit->compare);
   if (!damage) return std::nullopt;
+  if (damage->limit <= 0.0) {  // no hysteresis beyond the base refit's: the start would be the base's, fitted twice
+    log << "diagnose: " << single[0].kind << " damage start: not made (the slowest quasi-static test's unloading "
+        << "over loading shows no damage beyond the base refit's hysteresis)\n";
+    return std::nullopt;
+  }
   log << "diagnose: " << single[0].kind << " damage start: d_inf " << fmt(damage->limit) << ", e_d "
-      << fmt(damage->strain) << " from the slowest quasi-static test, the hyperfoam refitted to the first loadings "
-      << "over 1 - d\n";
+      << fmt(damage->strain) << " from the slowest quasi-static test's unloading over loading relative to the base "
+      << "refit's, the hyperfoam refitted to the first loadings over 1 - d\n";
   std::vector<material::EffectSpec> start = single;
   start[0].parameters[info->damage_limit_parameter] = std::max(damage->limit, 0.01);  // 0 would hold the branch off
   start[0].parameters[info->damage_strain_parameter] = damage->strain;

@@ -69,7 +69,10 @@
 // s_e (d_inf 0.15, e_d 0.29) on a random foam: from the energy start alone Mullins was switched off (r at its bound
 // 1000, dBIC -56) and friction was named (2026-11-28); from the strain start Mullins reaches dBIC 227, chi2/N 1.01, every
 // test within 1.83x noise (since the composition of Mullins' relaxation share with strain-dependent Prony, 2026-11-29:
-// Mullins + strain-dependent Prony, dBIC 253.8, chi2/N 0.90, the same 1.83x on dyn_25). Scale-set c052, Qi-Boyce-like s = s_e [1 - a tanh(e_max/e_s)(1 - (e/e_max)^p)] (a 0.42,
+// Mullins + strain-dependent Prony, dBIC 253.8, chi2/N 0.90, the same 1.83x on dyn_25). Since the damage start reads
+// its estimate relative to the base refit's hysteresis (docs/physics.md 9.28, 2026-12-05) Mullins is fitted best from
+// the damage start there (d_inf 0.160, e_d 0.114 against the truth's 0.154, 0.294; dBIC 239.6, chi2/N 0.94, dyn_25 at
+// 1.98x, the sweep the truth itself leaves at 2.79x on the seed-2025 set without scaling). Scale-set c052, Qi-Boyce-like s = s_e [1 - a tanh(e_max/e_s)(1 - (e/e_max)^p)] (a 0.42,
 // e_s 0.19, p 2.13) on a soft 50 kg/m3 foam: the energy start's Mullins (dBIC 2.595e4) was below friction's (2.855e4)
 // and friction + Mullins was named; from the strain start Mullins leads (3.128e4) and Mullins + friction is named.
 #include <gtest/gtest.h>
@@ -283,7 +286,7 @@ const nlohmann::json& mullins_in_fragment(const nlohmann::json& d) {
   throw std::runtime_error("no mullins in the fragment");
 }
 
-TEST(DiagnoseStart, ExponentialDamageIsNamedMullinsFromItsStrainStart) {
+TEST(DiagnoseStart, ExponentialDamageIsNamedMullinsWithAStrainDrivenSoftening) {
   const BenchCampaign c = bench_campaign("diagnose_mullins_strain", "c035", "--base-refit scale");
   ASSERT_EQ(c.truth.at("forms").at(0).get<std::string>(), "exponential_damage") << "the generator's mix changed";
 
@@ -296,8 +299,13 @@ TEST(DiagnoseStart, ExponentialDamageIsNamedMullinsFromItsStrainStart) {
       cushion::foreign_program::diagnose_raw(c.dir, "--candidates mullins,friction,strain_dependent_prony");
   ASSERT_EQ(d.at("winner").get<std::string>().rfind("mullins", 0), 0u) << d.at("verdict");
   for (const auto& t : d.at("candidates").at(0).at("compare").at("tests"))
-    EXPECT_LT(t.at("error_over_noise").get<double>(), 2.0) << t.at("name");
-  EXPECT_GT(mullins_in_fragment(d).at("strain_scale").get<double>(), 0.0);
+    EXPECT_LT(t.at("error_over_noise").get<double>(), 2.1) << t.at("name");  // dyn_25 1.98x (above)
+  // Driven by the strain, as the truth: the strain start's Biot-norm driver or the damage start's damage (whose
+  // d_inf then lies within 0.05 of the truth's).
+  const nlohmann::json& m = mullins_in_fragment(d);
+  const double damage = m.value("damage_limit", 0.0);
+  EXPECT_TRUE(m.value("strain_scale", 0.0) > 0.0 || damage > 0.0) << m.dump();
+  if (damage > 0.0) EXPECT_NEAR(damage, c.truth.at("parameters").at("mullins").at("damage_limit").get<double>(), 0.05);
   fs::remove_all(c.set);
 }
 
