@@ -136,8 +136,10 @@ struct DiagnoseOptions {
   /// 26/40 (26) and 20/40 (21), pairs 4/10 (5) and 4/10 (4), controls 10/10; 15.3 s per campaign (14.6), max 27.1 s.
   int polished_singles = 2;
   /// A single whose effect has damage parameters (EffectInfo::damage_limit_parameter: mullins) is fitted once more,
-  /// from a start with d_inf and e_d estimated from the slowest quasi-static test and the base refit's hyperfoam
-  /// refitted to the first loadings over 1 - d(e) (calibration/damage_start.hpp); the larger dBIC of its starts is kept.
+  /// from a start with d_inf and e_d estimated from the slowest quasi-static test (relative to the base refit's own
+  /// hysteresis where it reproduces that test within 3x noise; none where the estimate is d_inf 0) and the base refit's
+  /// hyperfoam refitted to the first loadings over 1 - d(e) (calibration/damage_start.hpp, docs/physics.md 9.28); the
+  /// larger dBIC of its starts is kept.
   /// The base a damage is fitted on has absorbed the softened first loading, which the joint factors cannot undo
   /// (docs/physics.md 9.27). false: not made (`--no-damage-start`).
   bool damage_start = true;

@@ -119,8 +119,9 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
       ->check(CLI::Range(0.0, 1.0));
   sub->add_flag("--no-damage-start{false}", opt->options.damage_start,
                 "fit Mullins only from the base refit, not also from a damage start (its d_inf and e_d estimated from "
-                "the slowest quasi-static test, the hyperfoam refitted to the first loadings over 1 - d; "
-                "docs/physics.md 9.27)");
+                "the slowest quasi-static test's unloading over loading, relative to the base refit's where that "
+                "reproduces the test within 3x noise; the hyperfoam refitted to the first loadings over 1 - d; "
+                "docs/physics.md 9.27, 9.28)");
   sub->add_option("--pairs-from", opt->options.pairs_from,
                   "pairs are the best single with each of the next N - 1 singles that beat the baseline by dBIC 10 "
                   "(default " +
