@@ -254,6 +254,7 @@ void write_campaign(const CampaignTruth& truth, const TestPlan& plan, const fs::
   std::vector<std::pair<const QuasiStaticProtocol*, std::uint64_t>> quasi_static;
   for (const auto& p : plan.quasi_static) quasi_static.push_back({&p, stream++});
   std::vector<std::pair<const DynamicProtocol*, std::uint64_t>> dynamic;
+  nlohmann::json dynamic_sd = nlohmann::json::object();  // drawn_noise.json: the noise each sweep was drawn with
   for (const auto& p : plan.dynamic) dynamic.push_back({&p, stream++});
   for (const auto& p : plan.extra_quasi_static) quasi_static.push_back({&p, extra_stream++});
   for (const auto& p : plan.extra_dynamic) dynamic.push_back({&p, extra_stream++});
@@ -273,6 +274,12 @@ void write_campaign(const CampaignTruth& truth, const TestPlan& plan, const fs::
     const DynamicProtocol& p = *pp;
     Random noise(mix_seed(truth.seed, own_stream));
     const DynamicRecord rec = run_dynamic(truth.base, truth.effects, sp, p, plan.noise, &noise);
+    nlohmann::json& sd = dynamic_sd[p.name];
+    sd["frequency_Hz"] = rec.frequency_Hz;
+    for (std::size_t i = 0; i < rec.frequency_Hz.size(); ++i) {
+      sd["modulus_sd_kPa"].push_back(rec.modulus_sd_kPa(i));
+      sd["phase_sd_deg"].push_back(rec.phase_sd_deg(i));
+    }
     const std::string file = p.name + ".csv";
     write_csv(dir / file,
               {"SYNTHETIC dynamic record from foreign_campaigns: " + p.name,
@@ -331,6 +338,9 @@ void write_campaign(const CampaignTruth& truth, const TestPlan& plan, const fs::
                                                                     : "relative to the oscillating force amplitude"}};
   t["generator"] = "foreign_campaigns (tests/foreign): own 1D forms, independent of cushion's material/ and calibration/";
   write_json(dir / "truth.json", t);
+  // Per sweep and frequency, the standard deviation of |E*| and phase the force noise gave (least squares over the fit
+  // window): read only to score, like truth.json; apart from it so that the truth does not depend on the extra tests.
+  write_json(dir / "drawn_noise.json", {{"dynamic", dynamic_sd}});
 }
 
 std::vector<CampaignKind> campaign_mix(int count, int pairs, int controls, std::uint64_t seed) {

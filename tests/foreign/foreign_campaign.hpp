@@ -2,7 +2,8 @@
 /// Test-data generation for the diagnose benchmark (issue 15), INDEPENDENT of cushion's material/ and
 /// calibration/: seeded truths (base foam + 0, 1 or 2 effects), effects scaled to 10-50 x the noise, and
 /// campaigns written in cushion's campaign format (campaign.json + CSV; calibration/campaign.hpp describes
-/// the format, nothing of it is linked) with truth.json beside them.
+/// the format, nothing of it is linked) with truth.json and drawn_noise.json (the standard deviation of |E*| and phase
+/// each sweep was drawn with, per frequency) beside them, both read only to score.
 ///
 /// Test plan: quasi-static 12, 120, 600 mm/min to 75 % and back (2 s hold; 10 Hz, 50 Hz at 600 mm/min so
 /// that a sample is 0.2 mm), dynamic at 25 % and 50 % preload (30 mm/min ramp, 5 s dwell,
