@@ -4,6 +4,9 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
+
+#include "calibration/segments.hpp"
 
 namespace cushion::calibration {
 
@@ -46,20 +49,11 @@ struct Table {
   }
 };
 
-/// Samples [a, b] of (x, y) keeping the monotone part (loading: each x above all before; unloading: below).
-Table monotone_branch(const std::vector<double>& x, const std::vector<double>& y, std::size_t a, std::size_t b,
-                      bool loading) {
-  Table t;
-  for (std::size_t i = a; i <= b; ++i) {
-    if (!t.x.empty() && (loading ? x[i] <= t.x.back() : x[i] >= t.x.back())) continue;
-    t.x.push_back(x[i]);
-    t.y.push_back(y[i]);
-  }
-  if (!loading) {
-    std::reverse(t.x.begin(), t.x.end());
-    std::reverse(t.y.begin(), t.y.end());
-  }
-  return t;
+/// segments.hpp monotone_branch as a Table.
+Table monotone_table(const std::vector<double>& x, const std::vector<double>& y, std::size_t a, std::size_t b,
+                     bool loading) {
+  MonotoneBranch m = monotone_branch(x, y, a, b, loading);
+  return {std::move(m.x), std::move(m.y)};
 }
 
 }  // namespace
@@ -89,8 +83,8 @@ TestCompare compare_indentation(const IndentationTest& test, const IndentationCu
   const auto& mx = test.record.indentation;
   const auto& mf = test.record.force;
   const Branches mb = branches(mx), rb = branches(model.indentation);
-  const Table load = monotone_branch(model.indentation, model.force, 0, rb.first, true);
-  const Table unload = monotone_branch(model.indentation, model.force, rb.last, model.indentation.size() - 1, false);
+  const Table load = monotone_table(model.indentation, model.force, 0, rb.first, true);
+  const Table unload = monotone_table(model.indentation, model.force, rb.last, model.indentation.size() - 1, false);
   std::size_t left_out = 0;
   auto take = [&](std::size_t a, std::size_t b, const Table& t) {
     std::size_t taken = 0;

@@ -12,24 +12,6 @@
 namespace cushion::calibration {
 namespace {
 
-/// One branch of a loop as a function of the strain: the samples [begin, end) of (strain, stress) in the order of
-/// increasing strain (an unloading branch read backwards), those that do not increase the strain left out (noise, hold).
-struct Branch {
-  std::vector<double> strain, stress;  ///< [-], [MPa]
-  double at(double e) const { return interpolate(strain, stress, e); }
-};
-Branch branch(const std::vector<double>& strain, const std::vector<double>& stress, std::size_t begin, std::size_t end,
-              bool backwards) {
-  Branch b;
-  for (std::size_t k = begin; k < end; ++k) {
-    const std::size_t i = backwards ? begin + end - 1 - k : k;
-    if (!b.strain.empty() && strain[i] <= b.strain.back()) continue;
-    b.strain.push_back(strain[i]);
-    b.stress.push_back(stress[i]);
-  }
-  return b;
-}
-
 /// The unloading samples of a record within (0, peak strain] beside its loading stress at the same strain (the loading
 /// branch interpolated), and the viscous ratio expected there without damage: the reference model's unloading over its
 /// loading at that strain, in [0, 1] (1 without a reference).
@@ -37,12 +19,12 @@ struct UnloadingPairs {
   std::vector<double> strain, unloading, loading, viscous_ratio;  ///< [-], [MPa], [MPa], [-]
 };
 UnloadingPairs unloading_pairs(const StressStrainRecord& rec, const Segments& s, const TestCompare* reference) {
-  const Branch loading = branch(rec.strain, rec.stress, s.load_begin, s.load_end + 1, false);
-  std::optional<Branch> model_loading, model_unloading;
-  if (reference) {
-    const std::size_t n = reference->x.size(), u = std::min(reference->unload_begin, n);
-    model_loading = branch(reference->x, reference->model, 0, u, false);
-    model_unloading = branch(reference->x, reference->model, u, n, true);
+  const MonotoneBranch loading = monotone_branch(rec.strain, rec.stress, s.load_begin, s.load_end, true);
+  std::optional<MonotoneBranch> model_loading, model_unloading;
+  const std::size_t n = reference ? reference->x.size() : 0;
+  if (n > 0 && reference->unload_begin > 0 && reference->unload_begin < n) {
+    model_loading = monotone_branch(reference->x, reference->model, 0, reference->unload_begin - 1, true);
+    model_unloading = monotone_branch(reference->x, reference->model, reference->unload_begin, n - 1, false);
   }
   UnloadingPairs p;
   for (std::size_t j = s.unload_begin; j <= s.unload_end; ++j) {
@@ -50,11 +32,11 @@ UnloadingPairs unloading_pairs(const StressStrainRecord& rec, const Segments& s,
     if (!(e > 0.0) || e > s.peak_strain) continue;
     p.strain.push_back(e);
     p.unloading.push_back(rec.stress[j]);
-    p.loading.push_back(loading.at(e));
+    p.loading.push_back(interpolate(loading.x, loading.y, e));
     double ratio = 1.0;
-    if (reference && model_loading->strain.size() > 1 && model_unloading->strain.size() > 1) {
-      const double load = model_loading->at(e);
-      ratio = load > 0.0 ? std::clamp(model_unloading->at(e) / load, 0.0, 1.0) : 1.0;
+    if (model_loading && model_loading->x.size() > 1 && model_unloading->x.size() > 1) {
+      const double load = interpolate(model_loading->x, model_loading->y, e);
+      ratio = load > 0.0 ? std::clamp(interpolate(model_unloading->x, model_unloading->y, e) / load, 0.0, 1.0) : 1.0;
     }
     p.viscous_ratio.push_back(ratio);
   }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "calibration/segments.hpp"
+
 namespace cushion::calibration {
 
 Decomposition decompose(const StressStrainRecord& r, const Segments& s, const std::vector<HereditaryMode>& modes,
@@ -41,15 +43,13 @@ Decomposition decompose(const StressStrainRecord& r, const Segments& s, const st
   }
 
   // Elastic curve: branch average where paired, loading branch below the paired range.
-  std::vector<double> load_e, load_se;
-  for (std::size_t i = 0; i < d.time.size() && d.loading[i]; ++i) {
-    if (!load_e.empty() && d.strain[i] <= load_e.back()) continue;  // keep it increasing through noise
-    load_e.push_back(d.strain[i]);
-    load_se.push_back(d.sigma_e[i]);
-  }
+  std::size_t loaded = 0;  // the leading loading samples
+  while (loaded < d.time.size() && d.loading[loaded]) ++loaded;
+  const MonotoneBranch load =  // kept increasing through noise
+      loaded > 0 ? monotone_branch(d.strain, d.sigma_e, 0, loaded - 1, true) : MonotoneBranch{};
   for (int k = 0; k <= curve_points; ++k) {
     const double e = s.peak_strain * double(k) / curve_points;
-    double se = interpolate(load_e, load_se, e);
+    double se = interpolate(load.x, load.y, e);
     if (n > 1 && e >= d.paired_strain_min && e <= d.paired_strain_max) se = interpolate(e_pair, se_pair, e);
     d.elastic.strain.push_back(e);
     d.elastic.stress.push_back(se);

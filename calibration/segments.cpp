@@ -54,6 +54,21 @@ double interpolate(const std::vector<double>& x, const std::vector<double>& y, d
   return (1.0 - w) * y[k] + w * y[k + 1];
 }
 
+MonotoneBranch monotone_branch(const std::vector<double>& x, const std::vector<double>& y, std::size_t a, std::size_t b,
+                               bool loading) {
+  MonotoneBranch t;
+  for (std::size_t i = a; i <= b; ++i) {
+    if (!t.x.empty() && (loading ? x[i] <= t.x.back() : x[i] >= t.x.back())) continue;
+    t.x.push_back(x[i]);
+    t.y.push_back(y[i]);
+  }
+  if (!loading) {
+    std::reverse(t.x.begin(), t.x.end());
+    std::reverse(t.y.begin(), t.y.end());
+  }
+  return t;
+}
+
 Segments detect_segments(const StressStrainRecord& r, const SegmentOptions& o) {
   const std::size_t n = r.time.size();
   if (n < std::size_t(2 * o.min_points + 1))

@@ -73,4 +73,13 @@ Segments detect_segments(const StressStrainRecord& record, const SegmentOptions&
 /// Linear interpolation of y(x) at xq for increasing x (clamped at the ends).
 double interpolate(const std::vector<double>& x, const std::vector<double>& y, double xq);
 
+/// A branch of a load/unload curve as a table with x strictly increasing (for interpolate).
+struct MonotoneBranch {
+  std::vector<double> x, y;
+};
+/// Samples [a, b] of (x, y) keeping the monotone part, the rest (noise, a hold) left out: loading, each x above all
+/// before it; unloading, each x below all before it, returned in reverse (x increasing).
+MonotoneBranch monotone_branch(const std::vector<double>& x, const std::vector<double>& y, std::size_t a, std::size_t b,
+                               bool loading);
+
 }  // namespace cushion::calibration

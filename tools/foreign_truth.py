@@ -18,10 +18,10 @@ The generator works in 1D at nu = 0 with free laterals (stretch l = 1 - e); cush
   air-flow drag, trapped  P = Y/l^3, Y' = M0 l^-r dE/dt - Y/tau, tau = (c0/M0) l^(r - n_K) stretch_maxwell (strain measure:
                           air                                                              P' has a term 3 P e'/l more)
   Ogden-Roxburgh          s = [1 - erf((W_max - W)/(m + beta W_max))/r] s_e, before the Prony memory (relaxation share 1)
-  exponential damage      s = [1 - d_inf (1 - exp(-e_max/e_d))] s_e, before the memory    mullins damage, r 1000 (counted
-                                                                                           with the strain measures: its
-                                                                                           sweeps are not matched yet)
+  exponential damage      s = [1 - d_inf (1 - exp(-e_max/e_d))] s_e, before the memory    mullins damage, r 1000, same
   Prony x J^-c            a_j -> a_j l^-c on each increment (history share 1)             power_law
+  Prony x exp(c (1 - J))  a_j -> a_j exp(k e) on each increment (history share 1,         exponential
+                          strain measure share 1)
   friction                k (E - E_p), |.| <= s_y on E = (l^2 - 1)/2                      jenkins (strain measure)
   stiffness damping       beta_s C_d D^q E, C_d the current (w = 1) or initial (w = 0) tangent  stiffness_proportional
                           (w = 1, q = 1), fractional (w = 0, beta_s (2 pi f_r)^(1-q) 2 sum mu_i = c, stretch
