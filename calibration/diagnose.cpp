@@ -1189,37 +1189,77 @@ double base_gain(const Diagnosis& d) {
   return d.base_refit && d.base_refit->converged ? std::max(0.0, d.base_refit->delta_bic) : 0.0;
 }
 
-/// Step 2b: the options.polished_singles best singles that beat the reference by strong_evidence, each refitted from its
-/// own fit with every Prony time and hyperfoam exponent free as well (DiagnoseOptions::polished_singles); the polished
-/// fit replaces the single's whenever it converged (so that the leaders are ranked on the same footing), keeping the
-/// dBIC before it for the support test.
-void polish_leading_singles(const CandidateJobs& c, std::vector<CandidateFit>& fits, std::ostream& log) {
+/// dBIC of the polished base refit when it converged (the unpolished reference's gain when larger or absent): the
+/// reference a challenger must beat.
+double polished_base_gain(const Diagnosis& d) {
+  const double gain = base_gain(d);
+  const auto& p = d.polished_base_refit;
+  return p && p->converged ? std::max(gain, p->delta_bic) : gain;
+}
+
+/// Step 2b: the options.polished_singles best singles that beat the reference by strong_evidence (leaders) and, when
+/// there is a leader, the options.polished_challengers best near misses (challengers: above the reference's dBIC but
+/// not by strong_evidence beyond it) with the base refit beside them,
+/// each refitted from its own fit with every Prony time and hyperfoam exponent free as well
+/// (DiagnoseOptions::polished_singles, polished_challengers); the polished fit replaces the single's whenever it
+/// converged (so that the singles are ranked on the same footing), keeping the dBIC before it; the polished reference
+/// goes to d.polished_base_refit.
+void polish_leading_singles(const CandidateJobs& c, std::vector<CandidateFit>& fits, Diagnosis& d, std::ostream& log) {
   const DiagnoseOptions& o = c.options;
-  if (o.polished_singles <= 0 || !o.joint_base || !c.base_ref() || base_refit_at_noise(c.d, o)) return;
-  std::vector<std::size_t> leaders;
-  for (std::size_t i : best_first(fits))
-    if (fits[i].converged && fits[i].delta_bic > base_gain(c.d) + o.strong_evidence &&
-        static_cast<int>(leaders.size()) < o.polished_singles)
-      leaders.push_back(i);
+  if (o.polished_singles <= 0 || !o.joint_base || !c.base_ref() || base_refit_at_noise(d, o)) return;
+  const bool reference = d.base_refit && d.base_refit->converged;
+  // near miss: above the reference's own dBIC, below it + strong_evidence (a single below the reference explains
+  // less than the base refit already does)
+  auto near_miss = [&](const CandidateFit& f) { return reference && f.delta_bic > d.base_refit->delta_bic; };
+  std::vector<std::size_t> leaders, challengers;
+  for (std::size_t i : best_first(fits)) {
+    if (!fits[i].converged) continue;
+    if (fits[i].delta_bic > base_gain(d) + o.strong_evidence) {
+      if (static_cast<int>(leaders.size()) < o.polished_singles) leaders.push_back(i);
+    } else if (near_miss(fits[i]) && static_cast<int>(challengers.size()) < o.polished_challengers) {
+      challengers.push_back(i);
+    }
+  }
+  if (leaders.empty()) challengers.clear();
   DiagnoseOptions free_all = o;
   free_all.base_times = free_all.base_exponents = true;
   std::vector<std::function<CandidateFit()>> jobs;
   std::vector<double> expected_seconds;
-  for (std::size_t i : leaders) {
+  std::vector<std::size_t> polish = leaders;
+  polish.insert(polish.end(), challengers.begin(), challengers.end());
+  for (std::size_t i : polish) {
     expected_seconds.push_back(fits[i].seconds);
     jobs.push_back([&c, &f = fits[i], free_all] {
       return refit_with_more_free(f, c.campaign, c.d.noise, c.d.residuals, c.d.baseline_bic, free_all, &c.spare);
     });
   }
+  if (!challengers.empty()) {
+    expected_seconds.push_back(d.base_refit->seconds);
+    jobs.push_back([&c, &f = *d.base_refit, free_all] {
+      return refit_with_more_free(f, c.campaign, c.d.noise, c.d.residuals, c.d.baseline_bic, free_all, &c.spare);
+    });
+  }
   std::vector<CandidateFit> polished = run_all(jobs, o.threads, expected_seconds, &c.spare);
-  for (std::size_t j = 0; j < leaders.size(); ++j) {
-    CandidateFit& f = fits[leaders[j]];
+  if (!challengers.empty()) {
+    d.polished_base_refit = std::move(polished.back());
+    polished.pop_back();
+    log << "diagnose: " << d.polished_base_refit->name() << " polished (Prony times and hyperfoam exponents free), "
+        << "the reference of the challenger(s): dBIC " << fmt(d.base_refit->delta_bic, 4) << " -> "
+        << fmt(d.polished_base_refit->delta_bic, 4) << ", " << d.polished_base_refit->evaluations << " runs, "
+        << fmt(d.polished_base_refit->seconds, 2) << " s"
+        << (d.polished_base_refit->converged ? "" : " (failed: " + d.polished_base_refit->message + ")") << "\n";
+  }
+  for (std::size_t j = 0; j < polish.size(); ++j) {
+    CandidateFit& f = fits[polish[j]];
     CandidateFit& p = polished[j];
-    log << "diagnose: " << f.name() << " polished (Prony times and hyperfoam exponents free): dBIC "
-        << fmt(f.delta_bic, 4) << " -> " << fmt(p.delta_bic, 4) << ", " << p.evaluations << " runs, "
-        << fmt(p.seconds, 2) << " s" << (p.converged ? "" : " (failed, not kept: " + p.message + ")") << "\n";
+    const bool challenger = j >= leaders.size();  // judged against the polished reference
+    log << "diagnose: " << f.name() << (challenger ? " (challenger)" : "")
+        << " polished (Prony times and hyperfoam exponents free): dBIC " << fmt(f.delta_bic, 4) << " -> "
+        << fmt(p.delta_bic, 4) << ", " << p.evaluations << " runs, " << fmt(p.seconds, 2) << " s"
+        << (p.converged ? "" : " (failed, not kept: " + p.message + ")") << "\n";
     if (!p.converged) continue;
     p.polished = true;
+    p.challenger = challenger;
     p.polish_added = p.parameters - f.parameters;
     p.delta_bic_unpolished = f.delta_bic;
     f = std::move(p);
@@ -1235,7 +1275,8 @@ void rank_candidates(std::vector<CandidateFit> fits, std::vector<CandidateFit> p
   const double gain = base_gain(d);
   const bool base_enough = base_refit_at_noise(d, options);
   for (auto& f : fits)
-    f.supported = !base_enough && f.converged && f.support_delta_bic() > gain + options.strong_evidence;
+    f.supported = !base_enough && f.converged &&
+                  f.support_delta_bic() > (f.challenger ? polished_base_gain(d) : gain) + options.strong_evidence;
   const double best_single = top.empty() ? 0.0 : fits[top.front()].delta_bic;
   const double single_chi2 = top.empty() ? 0.0 : fits[top.front()].chi2;
   for (auto& f : pairs) {
@@ -1545,7 +1586,7 @@ Diagnosis diagnose(const material::MaterialSpec& baseline, const Campaign& campa
     const CandidateJobs jobs{baseline, diagnosed, options, d, spare};
     std::vector<CandidateFit> singles =
         fit_singles_and_reference(jobs, single_candidates(baseline, options, d.warnings), d, log);
-    polish_leading_singles(jobs, singles, log);
+    polish_leading_singles(jobs, singles, d, log);
     const std::vector<std::size_t> top = pair_sources(singles, options);
     std::vector<CandidateFit> pairs = fit_pairs(jobs, singles, top, log);
     rank_candidates(std::move(singles), std::move(pairs), top, options, d);

@@ -129,11 +129,17 @@ nlohmann::json diagnosis_json(const Diagnosis& d) {
   j["winner_at_noise_level"] = d.winner_at_noise_level;
   j["rival"] = d.rival ? rival_json(*d.rival) : nlohmann::json(nullptr);
   j["fragment"] = d.fragment;
-  if (d.base_refit)
-    j["base_refit"] = {{"name", d.base_refit->name()}, {"parameters", d.base_refit->parameters},
-                       {"chi2", d.base_refit->chi2}, {"converged", d.base_refit->converged},
-                       {"delta_bic", std::isfinite(d.base_refit->delta_bic) ? nlohmann::json(d.base_refit->delta_bic)
-                                                                            : nlohmann::json(nullptr)}};
+  auto reference_json = [](const CandidateFit& r) {
+    return nlohmann::json{
+        {"name", r.name()},
+        {"parameters", r.parameters},
+        {"chi2", r.chi2},
+        {"converged", r.converged},
+        {"delta_bic", std::isfinite(r.delta_bic) ? nlohmann::json(r.delta_bic) : nlohmann::json(nullptr)}};
+  };
+  if (d.base_refit) j["base_refit"] = reference_json(*d.base_refit);
+  // step 2b: the reference a challenger is judged against (Prony times and hyperfoam exponents free too)
+  if (d.polished_base_refit) j["polished_base_refit"] = reference_json(*d.polished_base_refit);
   j["held_out"] = nlohmann::json::array();
   for (const auto& h : d.held_out)
     j["held_out"].push_back({{"candidate", h.candidate}, {"tests", h.tests}, {"chi2_candidate", finite_or_null(h.chi2_candidate)},
@@ -148,6 +154,7 @@ nlohmann::json diagnosis_json(const Diagnosis& d) {
                       {"evaluations", c.evaluations}, {"seconds", c.seconds}, {"effects", effects_json(c.effects)}};
     jc["support_note"] = c.support_note;  // why a converged candidate whose dBIC passes is not supported, else ""
     jc["polished"] = c.polished;  // step 2b: refitted with the base's Prony times and hyperfoam exponents free too
+    jc["challenger"] = c.challenger;  // a near miss polished (--polish-challengers): judged against polished_base_refit
     if (c.polished && std::isfinite(c.delta_bic_unpolished)) jc["delta_bic_unpolished"] = c.delta_bic_unpolished;
     if (!c.compare.tests.empty()) jc["compare"] = compare_json(c.compare, c.name());
     j["candidates"].push_back(jc);
@@ -196,14 +203,21 @@ std::string diagnosis_markdown(const Diagnosis& d) {
     o << "---|\n| - | baseline | 0 | 0 | " << fmt(d.baseline_chi2 / d.residuals) << " |";
     for (const auto& t : d.baseline.tests) o << " " << fmt(t.noise_ratio(), 3) << " |";
     o << " |\n";
-    if (d.base_refit) {  // the reference every effect must beat
-      const CandidateFit& b = *d.base_refit;
-      o << "| ref | " << b.name() << " | " << b.parameters << " | " << (std::isfinite(b.delta_bic) ? fmt(b.delta_bic, 4) : "-")
-        << " | " << (b.compare.tests.empty() ? "-" : fmt(b.chi2 / d.residuals)) << " |";
+    auto reference_row = [&](const CandidateFit& b, const std::string& rank, const std::string& name,
+                             const std::string& status) {
+      o << "| " << rank << " | " << name << " | " << b.parameters << " | "
+        << (std::isfinite(b.delta_bic) ? fmt(b.delta_bic, 4) : "-") << " | "
+        << (b.compare.tests.empty() ? "-" : fmt(b.chi2 / d.residuals)) << " |";
       for (std::size_t t = 0; t < names.size(); ++t)
         o << " " << (t < b.compare.tests.size() ? fmt(b.compare.tests[t].noise_ratio(), 3) : "-") << " |";
-      o << " an effect must beat this by the evidence threshold |\n";
-    }
+      o << " " << status << " |\n";
+    };
+    if (d.base_refit)  // the reference every effect must beat
+      reference_row(*d.base_refit, "ref", d.base_refit->name(), "an effect must beat this by the evidence threshold");
+    if (d.polished_base_refit)
+      reference_row(*d.polished_base_refit, "ref*", "base refit polished (Prony times and exponents free too)",
+                    d.polished_base_refit->converged ? "a challenger must beat this by the evidence threshold"
+                                                     : d.polished_base_refit->message);
     for (std::size_t i = 0; i < d.candidates.size(); ++i) {
       const CandidateFit& c = d.candidates[i];
       o << "| " << i + 1 << " | " << c.name() << " | " << c.parameters << " | "
@@ -217,7 +231,8 @@ std::string diagnosis_markdown(const Diagnosis& d) {
                                                           : "not supported (" + c.support_note + ")";
       o << " " << status;
       if (c.polished)
-        o << " (polished: Prony times and exponents free too, dBIC " << fmt(c.delta_bic_unpolished, 4) << " before)";
+        o << " (polished" << (c.challenger ? " as a challenger, judged against ref*" : "")
+          << ": Prony times and exponents free too, dBIC " << fmt(c.delta_bic_unpolished, 4) << " before)";
       o << " |\n";
     }
     o << "\n(per-test columns: RMS error / measurement noise; 1 = noise level)\n";
