@@ -1199,14 +1199,15 @@ double polished_base_gain(const Diagnosis& d) {
 
 /// Step 2b: the options.polished_singles best singles that beat the reference by strong_evidence (leaders) and, when
 /// there is a leader, the options.polished_challengers best near misses (challengers: above the reference's dBIC but
-/// not by strong_evidence beyond it) with the base refit beside them,
-/// each refitted from its own fit with every Prony time and hyperfoam exponent free as well
-/// (DiagnoseOptions::polished_singles, polished_challengers); the polished fit replaces the single's whenever it
-/// converged (so that the singles are ranked on the same footing), keeping the dBIC before it; the polished reference
-/// goes to d.polished_base_refit.
-void polish_leading_singles(const CandidateJobs& c, std::vector<CandidateFit>& fits, Diagnosis& d, std::ostream& log) {
+/// not by strong_evidence beyond it) with the base refit beside them, each refitted from its own fit with every Prony
+/// time and hyperfoam exponent free as well (DiagnoseOptions::polished_singles, polished_challengers); the polished
+/// fit replaces the single's whenever it converged (so that the singles are ranked on the same footing), keeping the
+/// dBIC before it. Returns the polished base refit (Diagnosis::polished_base_refit) when a challenger was polished.
+std::optional<CandidateFit> polish_leading_singles(const CandidateJobs& c, std::vector<CandidateFit>& fits,
+                                                   std::ostream& log) {
   const DiagnoseOptions& o = c.options;
-  if (o.polished_singles <= 0 || !o.joint_base || !c.base_ref() || base_refit_at_noise(d, o)) return;
+  const Diagnosis& d = c.d;
+  if (o.polished_singles <= 0 || !o.joint_base || !c.base_ref() || base_refit_at_noise(d, o)) return std::nullopt;
   const bool reference = d.base_refit && d.base_refit->converged;
   // near miss: above the reference's own dBIC, below it + strong_evidence (a single below the reference explains
   // less than the base refit already does)
@@ -1223,47 +1224,44 @@ void polish_leading_singles(const CandidateJobs& c, std::vector<CandidateFit>& f
   if (leaders.empty()) challengers.clear();
   DiagnoseOptions free_all = o;
   free_all.base_times = free_all.base_exponents = true;
+  std::vector<const CandidateFit*> polish;  // the leaders, the challengers, then the base refit when there are any
+  for (std::size_t i : leaders) polish.push_back(&fits[i]);
+  for (std::size_t i : challengers) polish.push_back(&fits[i]);
+  if (!challengers.empty()) polish.push_back(&*d.base_refit);
   std::vector<std::function<CandidateFit()>> jobs;
   std::vector<double> expected_seconds;
-  std::vector<std::size_t> polish = leaders;
-  polish.insert(polish.end(), challengers.begin(), challengers.end());
-  for (std::size_t i : polish) {
-    expected_seconds.push_back(fits[i].seconds);
-    jobs.push_back([&c, &f = fits[i], free_all] {
-      return refit_with_more_free(f, c.campaign, c.d.noise, c.d.residuals, c.d.baseline_bic, free_all, &c.spare);
-    });
-  }
-  if (!challengers.empty()) {
-    expected_seconds.push_back(d.base_refit->seconds);
-    jobs.push_back([&c, &f = *d.base_refit, free_all] {
-      return refit_with_more_free(f, c.campaign, c.d.noise, c.d.residuals, c.d.baseline_bic, free_all, &c.spare);
+  for (const CandidateFit* f : polish) {
+    expected_seconds.push_back(f->seconds);
+    jobs.push_back([&c, f, free_all] {
+      return refit_with_more_free(*f, c.campaign, c.d.noise, c.d.residuals, c.d.baseline_bic, free_all, &c.spare);
     });
   }
   std::vector<CandidateFit> polished = run_all(jobs, o.threads, expected_seconds, &c.spare);
-  if (!challengers.empty()) {
-    d.polished_base_refit = std::move(polished.back());
-    polished.pop_back();
-    log << "diagnose: " << d.polished_base_refit->name() << " polished (Prony times and hyperfoam exponents free), "
-        << "the reference of the challenger(s): dBIC " << fmt(d.base_refit->delta_bic, 4) << " -> "
-        << fmt(d.polished_base_refit->delta_bic, 4) << ", " << d.polished_base_refit->evaluations << " runs, "
-        << fmt(d.polished_base_refit->seconds, 2) << " s"
-        << (d.polished_base_refit->converged ? "" : " (failed: " + d.polished_base_refit->message + ")") << "\n";
-  }
   for (std::size_t j = 0; j < polish.size(); ++j) {
-    CandidateFit& f = fits[polish[j]];
+    const CandidateFit& p = polished[j];
+    const bool reference_job = j == leaders.size() + challengers.size();  // kept even when it failed
+    const char* role = j < leaders.size() ? "" : reference_job ? " (the challengers' reference)" : " (challenger)";
+    log << "diagnose: " << polish[j]->name() << role << " polished (Prony times and hyperfoam exponents free): dBIC "
+        << fmt(polish[j]->delta_bic, 4) << " -> " << fmt(p.delta_bic, 4) << ", " << p.evaluations << " runs, "
+        << fmt(p.seconds, 2) << " s"
+        << (p.converged ? "" : (reference_job ? " (failed: " : " (failed, not kept: ") + p.message + ")") << "\n";
+  }
+  std::optional<CandidateFit> polished_reference;
+  if (!challengers.empty()) {
+    polished_reference = std::move(polished.back());
+    polished.pop_back();
+  }
+  for (std::size_t j = 0; j < polished.size(); ++j) {
+    CandidateFit& f = fits[j < leaders.size() ? leaders[j] : challengers[j - leaders.size()]];
     CandidateFit& p = polished[j];
-    const bool challenger = j >= leaders.size();  // judged against the polished reference
-    log << "diagnose: " << f.name() << (challenger ? " (challenger)" : "")
-        << " polished (Prony times and hyperfoam exponents free): dBIC " << fmt(f.delta_bic, 4) << " -> "
-        << fmt(p.delta_bic, 4) << ", " << p.evaluations << " runs, " << fmt(p.seconds, 2) << " s"
-        << (p.converged ? "" : " (failed, not kept: " + p.message + ")") << "\n";
     if (!p.converged) continue;
     p.polished = true;
-    p.challenger = challenger;
+    p.challenger = j >= leaders.size();  // judged against the polished reference
     p.polish_added = p.parameters - f.parameters;
     p.delta_bic_unpolished = f.delta_bic;
     f = std::move(p);
   }
+  return polished_reference;
 }
 
 /// Ranking: a single is supported when it beats the reference by strong_evidence, a pair when it beats the
@@ -1586,7 +1584,7 @@ Diagnosis diagnose(const material::MaterialSpec& baseline, const Campaign& campa
     const CandidateJobs jobs{baseline, diagnosed, options, d, spare};
     std::vector<CandidateFit> singles =
         fit_singles_and_reference(jobs, single_candidates(baseline, options, d.warnings), d, log);
-    polish_leading_singles(jobs, singles, d, log);
+    d.polished_base_refit = polish_leading_singles(jobs, singles, log);
     const std::vector<std::size_t> top = pair_sources(singles, options);
     std::vector<CandidateFit> pairs = fit_pairs(jobs, singles, top, log);
     rank_candidates(std::move(singles), std::move(pairs), top, options, d);
