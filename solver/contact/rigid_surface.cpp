@@ -145,8 +145,8 @@ GapPoint ellipsoid_gap(const Vec3& centre, const Vec3& e, const Vec3& x) {
   out.g = t * nDp;
   const Mat3 P = Mat3::Identity() - out.grad * out.grad.transpose();
   const Mat3 W = P * Vec3(1.0 / e2(0), 1.0 / e2(1), 1.0 / e2(2)).asDiagonal() * P / nDp;
-  out.hess = W * (Mat3::Identity() + out.g * W).inverse();
-  out.hess = 0.5 * (out.hess + out.hess.transpose());
+  const Mat3 hess = W * (Mat3::Identity() + out.g * W).inverse();  // symmetric but for round-off
+  out.hess = 0.5 * (hess + hess.transpose());  // not from out.hess itself: its (0, 1) would read the new (1, 0)
   return out;
 }
 

@@ -5,7 +5,8 @@
 // Hessian to 1e-5 (relative to the largest entry + 1e-6) at random points for plane, sphere,
 // cylinder, flat punch (face, fillet, side), SIT-BAR (lobes, blend, plate) and an STL box; analytic
 // distances to 1e-10 mm; the ellipsoid lobes' nearest points lie on the ellipsoid (1e-12); the STL
-// box gives the box's signed distance inside and outside to 1e-12 mm; an open STL is rejected.
+// box gives the box's signed distance inside and outside to 1e-12 mm, and the lobes' Hessian is symmetric bit for bit;
+// an open STL is rejected.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -116,6 +117,7 @@ TEST(ContactSurfaces, SitBarLobesAreEllipsoids) {
     EXPECT_NEAR(p.grad.norm(), 1.0, 1e-12);
     const Vec3 foot = x - p.g * p.grad - centre;  // nearest point on the lobe
     EXPECT_NEAR(foot.cwiseQuotient(e).squaredNorm(), 1.0, 1e-12);
+    EXPECT_TRUE(p.hess == p.hess.transpose()) << "the Hessian symmetrised in place reads its own new entries";
   }
   EXPECT_NEAR(sitbar->gap(Vec3(60, 0, 70)).g, 10.0, 1e-10);   // straight below a lobe's lowest point
   EXPECT_NEAR(sitbar->gap(Vec3(-60, 0, 81)).g, -1.0, 1e-10);
