@@ -350,10 +350,11 @@ class TrialScore {
       ok[k] = m_.residuals_at(x.data(), J.col(static_cast<Eigen::Index>(k)).data(), n_);
     });
     if (std::count(ok.begin(), ok.end(), 0) > 0) return base_.clear();
-    const Eigen::VectorXd r0 = J.col(J.cols() - 1);
-    J = (J.leftCols(J.cols() - 1).colwise() - r0) / kStep;
-    qr_.compute(J);
-    Q_ = qr_.householderQ() * Eigen::MatrixXd::Identity(J.rows(), qr_.rank());
+    // A new matrix, not J itself: assigning J a block of J resizes J first, freeing the memory the block reads (the
+    // differences came from freed memory, different whenever the other thread had reused it: run-to-run variation).
+    const Eigen::MatrixXd dr_du = (J.leftCols(J.cols() - 1).colwise() - J.col(J.cols() - 1)) / kStep;
+    qr_.compute(dr_du);
+    Q_ = qr_.householderQ() * Eigen::MatrixXd::Identity(dr_du.rows(), qr_.rank());
   }
 
   /// The score of u (infinite where the model fails).
