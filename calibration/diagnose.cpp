@@ -1225,9 +1225,10 @@ std::optional<CandidateFit> polish_leading_singles(const CandidateJobs& c, std::
   if (leaders.empty()) challengers.clear();
   DiagnoseOptions free_all = o;
   free_all.base_times = free_all.base_exponents = true;
-  std::vector<const CandidateFit*> polish;  // the leaders, the challengers, then the base refit when there are any
-  for (std::size_t i : leaders) polish.push_back(&fits[i]);
-  for (std::size_t i : challengers) polish.push_back(&fits[i]);
+  std::vector<std::size_t> singles = leaders;  // the singles to polish: the leaders, then the challengers
+  singles.insert(singles.end(), challengers.begin(), challengers.end());
+  std::vector<const CandidateFit*> polish;  // their fits, then the base refit when there are challengers
+  for (std::size_t i : singles) polish.push_back(&fits[i]);
   if (!challengers.empty()) polish.push_back(&*d.base_refit);
   std::vector<std::function<CandidateFit()>> jobs;
   std::vector<double> expected_seconds;
@@ -1240,7 +1241,7 @@ std::optional<CandidateFit> polish_leading_singles(const CandidateJobs& c, std::
   std::vector<CandidateFit> polished = run_all(jobs, o.threads, expected_seconds, &c.spare);
   for (std::size_t j = 0; j < polish.size(); ++j) {
     const CandidateFit& p = polished[j];
-    const bool reference_job = j == leaders.size() + challengers.size();  // kept even when it failed
+    const bool reference_job = j == singles.size();  // kept even when it failed
     const char* role = j < leaders.size() ? "" : reference_job ? " (the challengers' reference)" : " (challenger)";
     log << "diagnose: " << polish[j]->name() << role << " polished (Prony times and hyperfoam exponents free): dBIC "
         << fmt(polish[j]->delta_bic, 4) << " -> " << fmt(p.delta_bic, 4) << ", " << p.evaluations << " runs, "
@@ -1253,7 +1254,7 @@ std::optional<CandidateFit> polish_leading_singles(const CandidateJobs& c, std::
     polished.pop_back();
   }
   for (std::size_t j = 0; j < polished.size(); ++j) {
-    CandidateFit& f = fits[j < leaders.size() ? leaders[j] : challengers[j - leaders.size()]];
+    CandidateFit& f = fits[singles[j]];
     CandidateFit& p = polished[j];
     if (!p.converged) continue;
     p.polished = true;

@@ -32,10 +32,13 @@ nlohmann::json effects_json(const std::vector<material::EffectSpec>& effects) {
   return a;
 }
 
+/// x, or null where it is not finite (JSON has no inf or NaN).
+nlohmann::json finite_or_null(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+
 /// The values as a JSON array, NaN/inf as null (JSON has no NaN).
 nlohmann::json finite_or_null(const std::vector<double>& v) {
   nlohmann::json a = nlohmann::json::array();
-  for (double x : v) a.push_back(std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr));
+  for (double x : v) a.push_back(finite_or_null(x));
   return a;
 }
 
@@ -75,8 +78,7 @@ nlohmann::json protocol_json(const ProtocolSearch& p) {
   nlohmann::json keys = nlohmann::json::array();
   for (const auto& k : p.keys) {
     nlohmann::json tried = nlohmann::json::array();
-    for (const auto& v : k.tried)
-      tried.push_back({{"value", v.label}, {"chi2", std::isfinite(v.chi2) ? nlohmann::json(v.chi2) : nlohmann::json(nullptr)}});
+    for (const auto& v : k.tried) tried.push_back({{"value", v.label}, {"chi2", finite_or_null(v.chi2)}});
     keys.push_back({{"key", k.key}, {"tests", k.tests}, {"assumed", k.assumed}, {"chosen", k.chosen}, {"tried", tried}});
   }
   return {{"keys", keys}, {"chi2_assumed", p.chi2_assumed}, {"chi2_chosen", p.chi2_chosen}, {"changed", p.changed()},
@@ -105,7 +107,7 @@ nlohmann::json rival_json(const Rival& r) {
   for (const auto& t : r.tests)
     tests.push_back(
         {{"test", t.name},
-         {"separation", std::isfinite(t.separation) ? nlohmann::json(t.separation) : nlohmann::json(nullptr)},
+         {"separation", finite_or_null(t.separation)},
          {"residuals", t.residuals},
          {"delta_chi2", std::isfinite(t.separation) ? nlohmann::json(t.delta_chi2()) : nlohmann::json(nullptr)},
          {"failure", t.failure}});
@@ -130,12 +132,11 @@ nlohmann::json diagnosis_json(const Diagnosis& d) {
   j["rival"] = d.rival ? rival_json(*d.rival) : nlohmann::json(nullptr);
   j["fragment"] = d.fragment;
   auto reference_json = [](const CandidateFit& r) {
-    return nlohmann::json{
-        {"name", r.name()},
-        {"parameters", r.parameters},
-        {"chi2", r.chi2},
-        {"converged", r.converged},
-        {"delta_bic", std::isfinite(r.delta_bic) ? nlohmann::json(r.delta_bic) : nlohmann::json(nullptr)}};
+    return nlohmann::json{{"name", r.name()},
+                          {"parameters", r.parameters},
+                          {"chi2", r.chi2},
+                          {"converged", r.converged},
+                          {"delta_bic", finite_or_null(r.delta_bic)}};
   };
   if (d.base_refit) j["base_refit"] = reference_json(*d.base_refit);
   // step 2b: the reference a challenger is judged against (Prony times and hyperfoam exponents free too)
@@ -148,10 +149,17 @@ nlohmann::json diagnosis_json(const Diagnosis& d) {
   j["candidates"] = nlohmann::json::array();
   for (std::size_t i = 0; i < d.candidates.size(); ++i) {
     const CandidateFit& c = d.candidates[i];
-    nlohmann::json jc{{"rank", i + 1},           {"name", c.name()},        {"parameters", c.parameters},
-                      {"converged", c.converged}, {"supported", c.supported}, {"message", c.message},
-                      {"chi2", c.chi2},           {"delta_bic", std::isfinite(c.delta_bic) ? nlohmann::json(c.delta_bic) : nlohmann::json(nullptr)},
-                      {"evaluations", c.evaluations}, {"seconds", c.seconds}, {"effects", effects_json(c.effects)}};
+    nlohmann::json jc{{"rank", i + 1},
+                      {"name", c.name()},
+                      {"parameters", c.parameters},
+                      {"converged", c.converged},
+                      {"supported", c.supported},
+                      {"message", c.message},
+                      {"chi2", c.chi2},
+                      {"delta_bic", finite_or_null(c.delta_bic)},
+                      {"evaluations", c.evaluations},
+                      {"seconds", c.seconds},
+                      {"effects", effects_json(c.effects)}};
     jc["support_note"] = c.support_note;  // why a converged candidate whose dBIC passes is not supported, else ""
     jc["polished"] = c.polished;  // step 2b: refitted with the base's Prony times and hyperfoam exponents free too
     jc["challenger"] = c.challenger;  // a near miss polished (--polish-challengers): judged against polished_base_refit
@@ -203,37 +211,32 @@ std::string diagnosis_markdown(const Diagnosis& d) {
     o << "---|\n| - | baseline | 0 | 0 | " << fmt(d.baseline_chi2 / d.residuals) << " |";
     for (const auto& t : d.baseline.tests) o << " " << fmt(t.noise_ratio(), 3) << " |";
     o << " |\n";
-    auto reference_row = [&](const CandidateFit& b, const std::string& rank, const std::string& name,
-                             const std::string& status) {
-      o << "| " << rank << " | " << name << " | " << b.parameters << " | "
-        << (std::isfinite(b.delta_bic) ? fmt(b.delta_bic, 4) : "-") << " | "
-        << (b.compare.tests.empty() ? "-" : fmt(b.chi2 / d.residuals)) << " |";
+    // one row of the table: a reference fit or a candidate
+    auto fit_row = [&](const CandidateFit& f, const std::string& rank, const std::string& name,
+                       const std::string& status) {
+      o << "| " << rank << " | " << name << " | " << f.parameters << " | "
+        << (std::isfinite(f.delta_bic) ? fmt(f.delta_bic, 4) : "-") << " | "
+        << (f.compare.tests.empty() ? "-" : fmt(f.chi2 / d.residuals)) << " |";
       for (std::size_t t = 0; t < names.size(); ++t)
-        o << " " << (t < b.compare.tests.size() ? fmt(b.compare.tests[t].noise_ratio(), 3) : "-") << " |";
+        o << " " << (t < f.compare.tests.size() ? fmt(f.compare.tests[t].noise_ratio(), 3) : "-") << " |";
       o << " " << status << " |\n";
     };
     if (d.base_refit)  // the reference every effect must beat
-      reference_row(*d.base_refit, "ref", d.base_refit->name(), "an effect must beat this by the evidence threshold");
+      fit_row(*d.base_refit, "ref", d.base_refit->name(), "an effect must beat this by the evidence threshold");
     if (d.polished_base_refit)
-      reference_row(*d.polished_base_refit, "ref*", "base refit polished (Prony times and exponents free too)",
-                    d.polished_base_refit->converged ? "a challenger must beat this by the evidence threshold"
-                                                     : d.polished_base_refit->message);
+      fit_row(*d.polished_base_refit, "ref*", "base refit polished (Prony times and exponents free too)",
+              d.polished_base_refit->converged ? "a challenger must beat this by the evidence threshold"
+                                               : d.polished_base_refit->message);
     for (std::size_t i = 0; i < d.candidates.size(); ++i) {
       const CandidateFit& c = d.candidates[i];
-      o << "| " << i + 1 << " | " << c.name() << " | " << c.parameters << " | "
-        << (std::isfinite(c.delta_bic) ? fmt(c.delta_bic, 4) : "-") << " | "
-        << (c.compare.tests.empty() ? "-" : fmt(c.chi2 / d.residuals)) << " |";
-      for (std::size_t t = 0; t < names.size(); ++t)
-        o << " " << (t < c.compare.tests.size() ? fmt(c.compare.tests[t].noise_ratio(), 3) : "-") << " |";
-      const std::string status = c.supported              ? "supported"
-                                 : !c.converged           ? c.message
-                                 : c.support_note.empty() ? "not supported"
-                                                          : "not supported (" + c.support_note + ")";
-      o << " " << status;
+      std::string status = c.supported              ? "supported"
+                           : !c.converged           ? c.message
+                           : c.support_note.empty() ? "not supported"
+                                                    : "not supported (" + c.support_note + ")";
       if (c.polished)
-        o << " (polished" << (c.challenger ? " as a challenger, judged against ref*" : "")
-          << ": Prony times and exponents free too, dBIC " << fmt(c.delta_bic_unpolished, 4) << " before)";
-      o << " |\n";
+        status += std::string(" (polished") + (c.challenger ? " as a challenger, judged against ref*" : "") +
+                  ": Prony times and exponents free too, dBIC " + fmt(c.delta_bic_unpolished, 4) + " before)";
+      fit_row(c, std::to_string(i + 1), c.name(), status);
     }
     o << "\n(per-test columns: RMS error / measurement noise; 1 = noise level)\n";
   }
