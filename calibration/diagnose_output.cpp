@@ -111,7 +111,10 @@ nlohmann::json rival_json(const Rival& r) {
          {"residuals", t.residuals},
          {"delta_chi2", std::isfinite(t.separation) ? nlohmann::json(t.delta_chi2()) : nlohmann::json(nullptr)},
          {"failure", t.failure}});
-  return {{"name", r.name}, {"delta_bic", r.delta_bic}, {"separating_tests", tests}};
+  return {{"name", r.name},
+          {"delta_bic", r.delta_bic},
+          {"least_gap", finite_or_null(r.least_gap)},
+          {"separating_tests", tests}};
 }
 
 }  // namespace

@@ -63,6 +63,7 @@ struct DiagnoseCli {
   std::vector<std::string> files;  // [material] campaign
   cushion::io::OutputFolder out;
   std::vector<std::string> candidates;
+  std::vector<double> noise_uncertainty;  // --noise-uncertainty QS,DYN (empty: the defaults)
   bool held_out = false;
   bool fixed_base = false;
   bool fixed_times = false;
@@ -136,6 +137,16 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
                       std::to_string(cushion::material::effect_catalog().size()) +
                       ": the best single with every other family of the catalogue)")
       ->check(CLI::Range(1, static_cast<int>(cushion::material::effect_catalog().size())));
+  sub->add_option("--noise-uncertainty", opt->noise_uncertainty,
+                  "QS,DYN: how far (a factor >= 1 on the RMS noise) each quasi-static and each dynamic test's noise "
+                  "estimate may be off when deciding whether another family explains the tests about as well as the "
+                  "winner (default " +
+                      cushion::io::format_double(cushion::calibration::NoiseUncertainty{}.quasi_static) + "," +
+                      cushion::io::format_double(cushion::calibration::NoiseUncertainty{}.dynamic) +
+                      ", as measured for the estimators; 1,1: the plain dBIC rule; docs/physics.md 9.31)")
+      ->expected(2)
+      ->delimiter(',')
+      ->check(CLI::Range(1.0, 100.0));
   sub->add_flag("--held-out", opt->held_out,
                 "name an effect only if it also predicts each test left out of its fit better than the base refit "
                 "(leave one test out; slower; off by default: with five tests of different kinds it vetoed the right "
@@ -161,6 +172,8 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
       throw cushion::InputError("--fixed-base: needs a material (a base fitted here is fitted jointly with each effect)");
     o.joint_base = !opt->fixed_base;
     o.held_out = opt->held_out;
+    if (!opt->noise_uncertainty.empty())
+      o.noise_uncertainty = {opt->noise_uncertainty.at(0), opt->noise_uncertainty.at(1)};
     o.search_protocol = !opt->assume_protocol;
     o.base_times = !opt->fixed_times && !raw;  // from raw data the fit has placed the times (--free-tau)
     for (const auto& k : o.candidates)

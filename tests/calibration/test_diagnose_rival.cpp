@@ -9,6 +9,12 @@
 //    apart: stiffness_damping named (62.1), pneumatic more than 10 below it, no rival.
 // 25 iterations: the pneumatic fit converges slowly (26 iterations here); the default 12 stops it at dBIC 43.8, where
 // it is no rival (measured 2026-11-25), and the test is about two converged explanations.
+//
+// A preference that rests on the noise estimates (rival_gap.hpp, docs/physics.md 9.31): campaign c040 of the seed-2026
+// scale set (secant-stiffness-proportional damping on a soft-plateau foam), `--candidates stiffness_damping,pneumatic`:
+// stiffness_damping wins by more than 10 as the noise estimates stand, but with each quasi-static test's noise
+// estimate off by up to x1.15 and each sweep's by up to x1.6 (their measured accuracy) the gap falls within 10, so
+// pneumatic is named as a rival; with `--noise-uncertainty 1,1` (the plain dBIC rule) it is not.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -64,4 +70,28 @@ TEST(DiagnoseRival, TheNamedSeparatingTestTellsTheFamiliesApart) {
   EXPECT_GT(delta_bic_of(e, "stiffness_damping") - delta_bic_of(e, "pneumatic"), 10.0);
   fs::remove_all(plain);
   fs::remove_all(extra);
+}
+
+TEST(DiagnoseRival, APreferenceThatRestsOnTheNoiseEstimatesNamesARival) {
+  const fs::path dir =
+      cushion::foreign_program::generate("rival_reweighted", 60, 2026, 10, 10, "--base-refit scale --only c040");
+  std::ifstream in(dir / "c040" / "truth.json");
+  const nlohmann::json truth = nlohmann::json::parse(in);
+  ASSERT_EQ(truth.at("forms").at(0).get<std::string>(), "secant_proportional") << "the generator's mix changed";
+
+  const std::string candidates = "--candidates stiffness_damping,pneumatic";
+  const nlohmann::json d = cushion::foreign_program::diagnose_raw(dir / "c040", candidates);
+  const std::string verdict = d.at("verdict");
+  EXPECT_EQ(d.at("winner"), "stiffness_damping") << verdict;
+  ASSERT_TRUE(d.at("rival").is_object()) << verdict;
+  EXPECT_EQ(d.at("rival").at("name"), "pneumatic");
+  EXPECT_GT(delta_bic_of(d, "stiffness_damping") - delta_bic_of(d, "pneumatic"), 10.0);
+  EXPECT_LE(d.at("rival").at("least_gap").get<double>(), 10.0);
+  EXPECT_NE(verdict.find("so the preference rests on the noise estimates"), std::string::npos) << verdict;
+
+  const nlohmann::json e =
+      cushion::foreign_program::diagnose_raw(dir / "c040", candidates + " --noise-uncertainty 1,1", "diag_plain");
+  EXPECT_EQ(e.at("winner"), "stiffness_damping") << e.at("verdict");
+  EXPECT_TRUE(e.at("rival").is_null()) << e.at("verdict");
+  fs::remove_all(dir);
 }
