@@ -1461,22 +1461,16 @@ void winner_verdict(const material::MaterialSpec& baseline, const DiagnoseOption
   d.verdict = o.str();
 }
 
-/// The winner's smallest BIC advantage over candidate f with each test's chi2 reweighted within the uncertainty of its
-/// noise estimate (rival_gap.hpp; the penalty difference as the two BICs count it, polish included).
-double reweighted_gap(const CandidateFit& w, const CandidateFit& f, const DiagnoseOptions& options) {
-  std::vector<double> chi2_w, chi2_f, u;
-  if (w.compare.tests.size() != f.compare.tests.size()) return f.bic - w.bic;
-  for (std::size_t t = 0; t < w.compare.tests.size(); ++t) {
-    chi2_w.push_back(test_chi2(w.compare.tests[t], options.quasi_static_points));
-    chi2_f.push_back(test_chi2(f.compare.tests[t], options.quasi_static_points));
-    u.push_back(options.noise_uncertainty.of(w.compare.tests[t].kind));
-  }
-  return least_bic_gap(chi2_w, chi2_f, u, (f.bic - f.chi2) - (w.bic - w.chi2));
+/// chi2 of each test of a candidate's comparison, in test order.
+std::vector<double> chi2_per_test(const CandidateFit& f, int quasi_static_points) {
+  std::vector<double> chi2;
+  for (const TestCompare& t : f.compare.tests) chi2.push_back(test_chi2(t, quasi_static_points));
+  return chi2;
 }
 
 /// Step 7: the best converged candidate whose families do not include all of the winner's, when the winner's BIC
 /// advantage over it is within strong_evidence with the tests reweighted within their noise estimates' uncertainty
-/// (reweighted_gap; the plain dBIC difference is the case of exact noise estimates); the proposals of
+/// (the plain dBIC difference is the case of exact noise estimates); the proposals of
 /// separating_test.hpp run with both fitted models. Measured on two benchmark sets (docs/physics.md 9.31).
 void find_rival(const Campaign& campaign, const DiagnoseOptions& options, Diagnosis& d, std::ostream& log) {
   const CandidateFit& w = d.candidates.front();
@@ -1485,10 +1479,16 @@ void find_rival(const Campaign& campaign, const DiagnoseOptions& options, Diagno
       return std::find(f.kinds.begin(), f.kinds.end(), k) != f.kinds.end();
     });
   };
+  // the winner's least BIC advantage over f with each test reweighted within its noise estimate's uncertainty
+  // (rival_gap.hpp; the penalty difference as the two BICs count it, polish included)
+  const std::vector<double> chi2_w = chi2_per_test(w, options.quasi_static_points);
+  std::vector<double> u;
+  for (const TestCompare& t : w.compare.tests) u.push_back(options.noise_uncertainty.of(t.kind));
   for (std::size_t i = 1; i < d.candidates.size(); ++i) {
     const CandidateFit& f = d.candidates[i];
     if (!f.converged || !std::isfinite(f.delta_bic) || nests_winner(f)) continue;
-    const double gap = reweighted_gap(w, f, options);
+    const double gap =
+        least_bic_gap(chi2_w, chi2_per_test(f, options.quasi_static_points), u, (f.bic - f.chi2) - (w.bic - w.chi2));
     if (!(gap <= options.strong_evidence)) continue;
     const auto t0 = Clock::now();
     try {
