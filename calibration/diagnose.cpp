@@ -1108,6 +1108,46 @@ EarlyStop pair_stop(const DiagnoseOptions& o, double chi2_single) {
       "(--pair-stop-share)"};
 }
 
+/// A pair's fit and, when its scanned fit ended no better than the best single, the refit from the plain sum (both in
+/// one job, so that a thread that has finished its pair goes on with its own refit instead of waiting for the others).
+struct PairOutcome {
+  CandidateFit kept;  ///< the lower-BIC fit, reporting both fits' runs and seconds
+  bool refitted = false;
+  double scanned_delta_bic = 0.0;
+  CandidateFit sum;  ///< the refit from the plain sum (when refitted)
+};
+
+/// A pair started from the polished best single's base also counts the parameters that polish freed.
+void count_inherited_polish(CandidateFit& f, const CandidateFit& best, const Diagnosis& d) {
+  if (best.polish_added > 0 && std::isfinite(f.bic)) {
+    f.polish_added = best.polish_added;  // its base's Prony times and exponents were refitted, in that single's polish
+    f.parameters += best.polish_added;
+    f.bic += best.polish_added * std::log(static_cast<double>(d.residuals));
+    f.delta_bic = d.baseline_bic - f.bic;
+  }
+}
+
+/// A joint pair of `best` with one more effect (`effects`: best's, then the added one) from best's base: the scanned
+/// fit and, when it ends no better than best alone, the refit from the plain sum, the lower BIC kept (fit_pairs).
+PairOutcome fit_joint_pair(const CandidateJobs& c, const CandidateFit& best,
+                           const std::vector<material::EffectSpec>& effects, const EarlyStop& stop) {
+  const material::MaterialSpec base = base_of(best);
+  PairOutcome out;
+  out.kept = joint_pair_job(c, base, effects, Scan::added_effect, stop)();
+  count_inherited_polish(out.kept, best, c.d);
+  if (out.kept.converged && out.kept.delta_bic > best.delta_bic) return out;
+  out.refitted = true;
+  out.scanned_delta_bic = out.kept.delta_bic;
+  out.sum = joint_pair_job(c, base, effects, Scan::none, stop)();
+  count_inherited_polish(out.sum, best, c.d);
+  const int runs = out.kept.evaluations + out.sum.evaluations;  // the kept fit reports both fits' cost
+  const double seconds = out.kept.seconds + out.sum.seconds;
+  if (out.sum.converged && (!out.kept.converged || out.sum.bic < out.kept.bic)) out.kept = out.sum;
+  out.kept.evaluations = runs;
+  out.kept.seconds = seconds;
+  return out;
+}
+
 /// Pairs of the best single with each of the next best, started from their single fits (a pair without the best single
 /// was never within strong_evidence of the best pair: bench seed 2025, session-14 code, 20 campaigns with three pairs,
 /// dBIC 151 to 4643 below it, and the slowest of the three in 7); a joint pair starts from the better
@@ -1125,55 +1165,37 @@ EarlyStop pair_stop(const DiagnoseOptions& o, double chi2_single) {
 ///
 /// Both fits of a pair stop after pair_stop_iteration iterations when the second effect still explains less than
 /// pair_stop_share of the chi2 the best single leaves (pair_stop; a stopped scanned fit is then fitted from the sum).
+/// A pair's refit runs in the pair's own job, right after its scanned fit (PairOutcome): as two stages, the refits
+/// waited for the slowest scanned pair (docs/physics.md 9.32).
 std::vector<CandidateFit> fit_pairs(const CandidateJobs& c, const std::vector<CandidateFit>& fits,
                                     const std::vector<std::size_t>& top, std::ostream& log) {
   const bool joint = c.options.joint_base && c.base_ref();
-  std::vector<std::function<CandidateFit()>> jobs;
-  std::vector<std::vector<material::EffectSpec>> effects;
-  std::vector<double> expected_seconds;  // a pair costs about what its two singles cost together
   const CandidateFit* best = top.empty() ? nullptr : &fits[top.front()];
   const EarlyStop stop = best ? pair_stop(c.options, best->chi2) : EarlyStop{};
+  std::vector<std::function<PairOutcome()>> jobs;
+  std::vector<double> expected_seconds;  // a pair costs about what its two singles cost together
   for (std::size_t b = 1; b < top.size(); ++b) {
     expected_seconds.push_back(best->seconds + fits[top[b]].seconds);
-    effects.push_back(best->effects);
-    effects.back().push_back(fits[top[b]].effects.front());
-    jobs.push_back(joint ? joint_pair_job(c, base_of(*best), effects.back(), Scan::added_effect, stop)
-                         : c.job(effects.back(), Scan::none, false));
+    std::vector<material::EffectSpec> effects = best->effects;
+    effects.push_back(fits[top[b]].effects.front());
+    if (joint)
+      jobs.push_back([&c, best, effects, stop] { return fit_joint_pair(c, *best, effects, stop); });
+    else
+      jobs.push_back([job = c.job(effects, Scan::none, false)] {
+        PairOutcome out;
+        out.kept = job();
+        return out;
+      });
   }
-  std::vector<CandidateFit> pairs = run_all(jobs, c.options.threads, expected_seconds, &c.spare);
-  const int inherited = best ? best->polish_added : 0;  // started from the polished single's base
-  auto inherit = [&](CandidateFit& f) {
-    if (inherited > 0 && std::isfinite(f.bic)) {
-      f.polish_added = inherited;  // its base's Prony times and exponents were refitted, in that single's polish
-      f.parameters += inherited;
-      f.bic += inherited * std::log(static_cast<double>(c.d.residuals));
-      f.delta_bic = c.d.baseline_bic - f.bic;
-    }
-  };
-  std::vector<std::size_t> again;  // joint pairs no better than the best single: fitted again from the plain sum
-  std::vector<std::function<CandidateFit()>> sum_jobs;
-  std::vector<double> sum_seconds;
-  for (std::size_t i = 0; i < pairs.size(); ++i) {
-    inherit(pairs[i]);
-    if (!joint || (pairs[i].converged && pairs[i].delta_bic > best->delta_bic)) continue;
-    again.push_back(i);
-    sum_jobs.push_back(joint_pair_job(c, base_of(*best), effects[i], Scan::none, stop));
-    sum_seconds.push_back(pairs[i].seconds);
-  }
-  std::vector<CandidateFit> sums = run_all(sum_jobs, c.options.threads, sum_seconds, &c.spare);
-  for (std::size_t j = 0; j < again.size(); ++j) {
-    CandidateFit& scanned = pairs[again[j]];
-    CandidateFit& sum = sums[j];
-    inherit(sum);
-    log << "diagnose: " << scanned.name() << " no better than " << best->name()
-        << " alone: fitted again from both single fits without a scan: dBIC " << fmt(scanned.delta_bic, 4) << " -> "
-        << fmt(sum.delta_bic, 4) << ", " << sum.evaluations << " runs, " << fmt(sum.seconds, 2) << " s"
-        << (sum.converged ? "" : " (failed: " + sum.message + ")") << "\n";
-    const int runs = scanned.evaluations + sum.evaluations;  // the kept fit reports both fits' cost
-    const double seconds = scanned.seconds + sum.seconds;
-    if (sum.converged && (!scanned.converged || sum.bic < scanned.bic)) scanned = std::move(sum);
-    scanned.evaluations = runs;
-    scanned.seconds = seconds;
+  std::vector<PairOutcome> outcomes = run_all(jobs, c.options.threads, expected_seconds, &c.spare);
+  std::vector<CandidateFit> pairs;
+  for (PairOutcome& o : outcomes) {
+    if (o.refitted)
+      log << "diagnose: " << o.kept.name() << " no better than " << best->name()
+          << " alone: fitted again from both single fits without a scan: dBIC " << fmt(o.scanned_delta_bic, 4) << " -> "
+          << fmt(o.sum.delta_bic, 4) << ", " << o.sum.evaluations << " runs, " << fmt(o.sum.seconds, 2) << " s"
+          << (o.sum.converged ? "" : " (failed: " + o.sum.message + ")") << "\n";
+    pairs.push_back(std::move(o.kept));
   }
   for (const auto& f : pairs) log_fit(log, f, false);
   return pairs;

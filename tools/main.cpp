@@ -16,6 +16,9 @@ std::vector<std::pair<std::string, Setup>>& registry() {
 }  // namespace cushion::tools
 
 int main(int argc, char** argv) {
+  // Progress lines reach a log file or a pipe (`cushion diagnose ... | tee log`) as they are written, not at exit:
+  // stdout (which std::cout writes through) is line-buffered even when it is not a terminal.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   CLI::App app{"cushion: visco-hyperelastic foam calibration and finite-element analysis"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "cushion 0.1.0");

@@ -211,3 +211,20 @@ TEST_F(CliFit, BadOptions) {
   EXPECT_NE(r.output.find("--nu"), std::string::npos);
   EXPECT_FALSE(fs::exists(out));
 }
+
+// A user who sends the console to a log file or a pipe (`cushion fit ... | tee fit.log`) sees each progress line when
+// it is written, not all of them at exit: the first line must reach the pipe while the fit still runs, i.e. before
+// its outputs exist (they appear at the end, all at once). With stdout fully buffered (the C library's default off a
+// terminal) the first line arrived only at exit, after the outputs.
+TEST_F(CliFit, ProgressLinesReachAPipeWhileItRuns) {
+  const fs::path out = root() / "piped_out";
+  fs::remove_all(out);
+  const std::string reader = "{ IFS= read -r first; if [ -e " + quoted(out) +
+                             " ]; then echo 'FIRST LINE AFTER THE OUTPUTS'; else echo 'FIRST LINE WHILE RUNNING'; fi; "
+                             "echo \"first: $first\"; cat; }";
+  const CommandRun r = cli_test::run_command(quoted(CUSHION_BINARY) + " fit " + quoted(campaign() / "campaign.json") +
+                                             " -o " + quoted(out) + " | " + reader);
+  EXPECT_NE(r.output.find("FIRST LINE WHILE RUNNING"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("first: fit: "), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(out / "material.json")) << r.output;
+}
