@@ -1111,10 +1111,8 @@ EarlyStop pair_stop(const DiagnoseOptions& o, double chi2_single) {
 /// A pair's fit and, when its scanned fit ended no better than the best single, the refit from the plain sum (both in
 /// one job, so that a thread that has finished its pair goes on with its own refit instead of waiting for the others).
 struct PairOutcome {
-  CandidateFit kept;  ///< the lower-BIC fit, reporting both fits' runs and seconds
-  bool refitted = false;
-  double scanned_delta_bic = 0.0;
-  CandidateFit sum;  ///< the refit from the plain sum (when refitted)
+  CandidateFit kept;      ///< the lower-BIC fit, reporting both fits' runs and seconds
+  std::string refit_log;  ///< the log line of the refit from the plain sum (empty: none was needed)
 };
 
 /// A pair started from the polished best single's base also counts the parameters that polish freed.
@@ -1133,18 +1131,21 @@ PairOutcome fit_joint_pair(const CandidateJobs& c, const CandidateFit& best,
                            const std::vector<material::EffectSpec>& effects, const EarlyStop& stop) {
   const material::MaterialSpec base = base_of(best);
   PairOutcome out;
-  out.kept = joint_pair_job(c, base, effects, Scan::added_effect, stop)();
-  count_inherited_polish(out.kept, best, c.d);
-  if (out.kept.converged && out.kept.delta_bic > best.delta_bic) return out;
-  out.refitted = true;
-  out.scanned_delta_bic = out.kept.delta_bic;
-  out.sum = joint_pair_job(c, base, effects, Scan::none, stop)();
-  count_inherited_polish(out.sum, best, c.d);
-  const int runs = out.kept.evaluations + out.sum.evaluations;  // the kept fit reports both fits' cost
-  const double seconds = out.kept.seconds + out.sum.seconds;
-  if (out.sum.converged && (!out.kept.converged || out.sum.bic < out.kept.bic)) out.kept = out.sum;
-  out.kept.evaluations = runs;
-  out.kept.seconds = seconds;
+  CandidateFit& scanned = out.kept;
+  scanned = joint_pair_job(c, base, effects, Scan::added_effect, stop)();
+  count_inherited_polish(scanned, best, c.d);
+  if (scanned.converged && scanned.delta_bic > best.delta_bic) return out;
+  CandidateFit sum = joint_pair_job(c, base, effects, Scan::none, stop)();
+  count_inherited_polish(sum, best, c.d);
+  out.refit_log = "diagnose: " + scanned.name() + " no better than " + best.name() +
+                  " alone: fitted again from both single fits without a scan: dBIC " + fmt(scanned.delta_bic, 4) +
+                  " -> " + fmt(sum.delta_bic, 4) + ", " + std::to_string(sum.evaluations) + " runs, " +
+                  fmt(sum.seconds, 2) + " s" + (sum.converged ? "" : " (failed: " + sum.message + ")") + "\n";
+  const int runs = scanned.evaluations + sum.evaluations;  // the kept fit reports both fits' cost
+  const double seconds = scanned.seconds + sum.seconds;
+  if (sum.converged && (!scanned.converged || sum.bic < scanned.bic)) scanned = std::move(sum);
+  scanned.evaluations = runs;
+  scanned.seconds = seconds;
   return out;
 }
 
@@ -1190,11 +1191,7 @@ std::vector<CandidateFit> fit_pairs(const CandidateJobs& c, const std::vector<Ca
   std::vector<PairOutcome> outcomes = run_all(jobs, c.options.threads, expected_seconds, &c.spare);
   std::vector<CandidateFit> pairs;
   for (PairOutcome& o : outcomes) {
-    if (o.refitted)
-      log << "diagnose: " << o.kept.name() << " no better than " << best->name()
-          << " alone: fitted again from both single fits without a scan: dBIC " << fmt(o.scanned_delta_bic, 4) << " -> "
-          << fmt(o.sum.delta_bic, 4) << ", " << o.sum.evaluations << " runs, " << fmt(o.sum.seconds, 2) << " s"
-          << (o.sum.converged ? "" : " (failed: " + o.sum.message + ")") << "\n";
+    log << o.refit_log;
     pairs.push_back(std::move(o.kept));
   }
   for (const auto& f : pairs) log_fit(log, f, false);
