@@ -117,6 +117,10 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
              cushion::io::format_double(cushion::calibration::DiagnoseOptions{}.pair_share) +
              "; 0: the dBIC rule alone; docs/physics.md 9.13)")
       ->check(CLI::Range(0.0, 1.0));
+  sub->add_flag("--stop-at-noise", opt->options.stop_at_noise,
+                "a baseline already within 1.5x its noise on every test ends the diagnosis at once with \"No effect is "
+                "missing\" (faster; by default the candidates are still fitted and one beating a refitted base by dBIC "
+                "10 is named: a pattern within 1.5x noise per test can still be evidence, docs/physics.md 9.33)");
   sub->add_option("--pair-stop-share", opt->options.pair_stop_share,
                   "a pair's fit stops after " +
                       std::to_string(cushion::calibration::DiagnoseOptions{}.pair_stop_iteration) +
