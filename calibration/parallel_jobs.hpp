@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <functional>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include <ceres/cost_function.h>
@@ -60,13 +61,33 @@ std::vector<Result> run_all(const std::vector<std::function<Result()>>& jobs, in
 /// be safe to call from two threads at once and must not throw.
 void parallel_for(std::size_t n, SpareCores* spare, const std::function<void(std::size_t)>& f);
 
-/// A Ceres cost of one parameter block whose Jacobian is the forward difference of `residuals` (u -> r, false when
-/// the model fails), with Ceres' own rule (ceres/internal/numeric_diff.h, FORWARD: step max(sqrt(eps),
-/// relative_step |u_j|), column (r(u + step e_j) - r(u)) / step), so that a fit follows the same path as with
-/// DynamicNumericDiffCostFunction; the columns run on two threads while `spare` lends a core (parallel_for). A column
-/// whose forward point fails takes the backward difference (r(u) - r(u - step e_j)) / step; only when both fail does
-/// the Jacobian fail (a fit whose model fails just beyond a point, e.g. a power-law air flow whose free-stretch Newton
-/// stops converging, then stops there with Ceres' FAILURE). `residuals` must be safe to call from two threads at once.
+/// What the forward- and central-difference costs share: one parameter block, the residuals u -> r (false when the model
+/// fails), Ceres' step rule max(sqrt(eps), relative_step |u_j|) (ceres/internal/numeric_diff.h), and the Jacobian's
+/// columns on two threads while `spare` lends a core (parallel_for). `residuals` must be safe to call from two threads
+/// at once.
+class DifferenceCost : public ceres::CostFunction {
+ public:
+  using Residuals = std::function<bool(const double* u, double* r)>;
+
+ protected:
+  DifferenceCost(Residuals residuals, int parameters, int n_residuals, double relative_step, SpareCores* spare);
+  /// Writes column j of the row-major Jacobian J from u, r(u) and the column's step; false: the model failed.
+  using Column = std::function<bool(int j, double step, const double* u, const double* r, double* J)>;
+  /// r(u) into `residuals`, then, when Ceres asks for the Jacobian, every column.
+  bool evaluate(double const* const* parameters, double* residuals, double** jacobians, const Column& column) const;
+
+  Residuals residuals_;
+  int parameters_, n_residuals_;
+  double relative_step_;
+  SpareCores* spare_;
+};
+
+/// A Ceres cost of one parameter block whose Jacobian is the forward difference of `residuals`, with Ceres' own rule
+/// (FORWARD: the step of DifferenceCost, column (r(u + step e_j) - r(u)) / step), so that a fit follows the same path as
+/// with DynamicNumericDiffCostFunction<F, ceres::FORWARD>. A column whose forward point fails takes the backward
+/// difference (r(u) - r(u - step e_j)) / step; only when both fail does the Jacobian fail (a fit whose model fails just
+/// beyond a point, e.g. a power-law air flow whose free-stretch Newton stops converging, then stops there with Ceres'
+/// FAILURE).
 /// upper_bounds (empty: none; else one per parameter): a column whose forward point lies beyond its parameter's upper
 /// bound takes the backward difference, and keeps it only when the cost falls inward (the gradient sum_i r_i J_ij > 0);
 /// where it falls outward the bound is active and the column is zero, as a model that clamps its parameters gives it.
@@ -74,19 +95,25 @@ void parallel_for(std::size_t n, SpareCores* spare, const std::function<void(std
 /// its upper bound (stiffness_damping derivative_order, started at 1: docs/physics.md 5.4b); with it kept where the
 /// bound is active, Ceres' step for the other parameters is the projection of one that leaves the box, and Mullins fits
 /// with r at its bound ended worse (docs/physics.md 9.13).
-class ForwardDifferenceCost final : public ceres::CostFunction {
+class ForwardDifferenceCost final : public DifferenceCost {
  public:
-  using Residuals = std::function<bool(const double* u, double* r)>;
   ForwardDifferenceCost(Residuals residuals, int parameters, int n_residuals, double relative_step, SpareCores* spare,
                         std::vector<double> upper_bounds = {});
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
 
  private:
-  Residuals residuals_;
-  int parameters_, n_residuals_;
-  double relative_step_;
-  SpareCores* spare_;
   std::vector<double> upper_;
+};
+
+/// A Ceres cost of one parameter block whose Jacobian is the central difference of `residuals` (false when the model
+/// fails at either point: then the Jacobian fails), with Ceres' own rule (CENTRAL, the method
+/// DynamicNumericDiffCostFunction takes by default: the step of DifferenceCost, column
+/// (r(u + step e_j) - r(u - step e_j)) (1/step)/2), bit for bit, so that a fit follows the same path as with it.
+class CentralDifferenceCost final : public DifferenceCost {
+ public:
+  CentralDifferenceCost(Residuals residuals, int parameters, int n_residuals, double relative_step, SpareCores* spare)
+      : DifferenceCost(std::move(residuals), parameters, n_residuals, relative_step, spare) {}
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
 };
 
 }  // namespace cushion::calibration

@@ -10,12 +10,15 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <thread>
 
 #include "calibration/exponent_grid.hpp"
+#include "calibration/parallel_jobs.hpp"
 #include "calibration/prony_fit.hpp"
 #include "material/hyperfoam.hpp"
 #include "material/stability.hpp"
@@ -609,17 +612,51 @@ std::vector<double> times_at(const Targets& g, const double* u) {
   return tau;
 }
 
-/// The paths are rebuilt only when the times change: a forward-difference Jacobian perturbs the other 2N + M
-/// parameters on the same times. Ceres evaluates it on one thread (dense_fit_options), so the cache is not shared.
-struct TimesResidual {
-  const Targets* g;
-  mutable std::vector<double> cached_tau;
-  mutable std::optional<Targets> cached;
-  bool operator()(double const* const* p, double* r) const {
-    const std::vector<double> tau = times_at(*g, p[0] + g->parameters());
-    if (!cached || tau != cached_tau) cached = retimed(*g, tau), cached_tau = tau;
-    return residuals(*cached, p[0], r);
+/// The residuals at x = [mu_j / mu_scale, alpha_j, a_i, u_i] for the times tau0_i 10^u_i. Safe to call from two threads
+/// at once (the Jacobian's columns run on two, CentralDifferenceCost): the paths are rebuilt only when the times change,
+/// in one of a few slots, each holding the paths of the last times it saw (a numeric Jacobian perturbs the other 2N + M
+/// parameters on the same times); a caller takes a free slot, so no two threads share one.
+class TimesResidual {
+ public:
+  explicit TimesResidual(const Targets& g) : g_(g) {}
+  bool operator()(const double* x, double* r) {
+    const std::vector<double> tau = times_at(g_, x + g_.parameters());
+    const Lease lease{*this, acquire(tau)};
+    Slot& slot = lease.slot;
+    if (!slot.paths || tau != slot.tau) slot.paths = retimed(g_, tau), slot.tau = tau;
+    return residuals(*slot.paths, x, r);
   }
+
+ private:
+  struct Slot {
+    std::vector<double> tau;
+    std::optional<Targets> paths;
+    bool busy = false;
+  };
+  /// A free slot, one that holds `tau` when there is one.
+  Slot& acquire(const std::vector<double>& tau) {
+    std::lock_guard lock(mutex_);
+    Slot* free = nullptr;
+    for (auto& s : slots_) {
+      if (s->busy) continue;
+      if (s->paths && s->tau == tau) free = s.get();
+      if (!free) free = s.get();
+    }
+    if (!free) free = slots_.emplace_back(std::make_unique<Slot>()).get();
+    free->busy = true;
+    return *free;
+  }
+  struct Lease {  // gives the slot back however the evaluation ends
+    TimesResidual& owner;
+    Slot& slot;
+    ~Lease() {
+      std::lock_guard lock(owner.mutex_);
+      slot.busy = false;
+    }
+  };
+  const Targets& g_;
+  std::mutex mutex_;
+  std::vector<std::unique_ptr<Slot>> slots_;
 };
 
 struct TimesOutcome {
@@ -638,11 +675,13 @@ TimesOutcome polish_times(const Targets& g, const std::vector<double>& x0, const
   std::vector<double> x = x0;
   x.resize(m, 0.0);
   for (std::size_t i = 0; i < m; ++i) x[i] = std::clamp(x[i], b.lower[i], b.upper[i]);
-  ceres::NumericDiffOptions nd;
-  nd.relative_step_size = 1e-6;
-  auto* cost = new ceres::DynamicNumericDiffCostFunction<TimesResidual>(new TimesResidual{&g}, ceres::TAKE_OWNERSHIP, nd);
-  cost->AddParameterBlock(static_cast<int>(m));
-  cost->SetNumResiduals(static_cast<int>(g.residuals()));
+  // Ceres' central differences (relative step 1e-6), the columns on two threads: nothing else runs while the base fit
+  // polishes its times (the polishes of stage 2 ran on two threads before it).
+  SpareCores second_core;
+  second_core.lend();
+  auto residual = std::make_shared<TimesResidual>(g);
+  auto* cost = new CentralDifferenceCost([residual](const double* u, double* r) { return (*residual)(u, r); },
+                                         static_cast<int>(m), static_cast<int>(g.residuals()), 1e-6, &second_core);
   ceres::Problem problem;
   problem.AddResidualBlock(cost, nullptr, x.data());
   add_ratio_bound_and_box(problem, x.data(), g, b, options);
@@ -654,7 +693,7 @@ TimesOutcome polish_times(const Targets& g, const std::vector<double>& x0, const
   out.usable = summary.IsSolutionUsable();
   out.cost = summary.final_cost;
   out.report = summary.BriefReport();
-  out.evaluations = summary.num_residual_evaluations + summary.num_jacobian_evaluations * int(m + 1);
+  out.evaluations = summary.num_residual_evaluations + summary.num_jacobian_evaluations * int(2 * m + 1);
   out.tau = times_at(g, x.data() + n);
   x.resize(n);
   out.x = x;

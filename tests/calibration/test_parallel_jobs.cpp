@@ -3,6 +3,8 @@
 //  - the Jacobian equals Ceres' own FORWARD numeric differentiation (DynamicNumericDiffCostFunction, relative step
 //    1e-5) bit for bit, with and without a lent core: a fit follows the same path as before, on one thread or two;
 //  - it is the analytic Jacobian within the forward-difference error (relative step 1e-5: 1e-4 of the largest entry);
+//  - the central-difference Jacobian equals Ceres' CENTRAL one (DynamicNumericDiffCostFunction's default) bit for bit,
+//    on one thread or two, and fails where either point fails;
 //  - parallel_for calls each index once; run_all returns results in job order and lends nothing once it returns.
 #include <gtest/gtest.h>
 
@@ -51,6 +53,28 @@ std::vector<double> jacobian_of(const ceres::CostFunction& cost, const std::vect
   return J;
 }
 
+/// The Jacobian of the cost made by make(spare) equals `expected` bit for bit, without a spare core and with one lent,
+/// and the lent core is given back afterwards.
+template <class Make>
+void expect_bit_for_bit_on_one_thread_or_two(const Make& make, const std::vector<double>& u,
+                                             const std::vector<double>& expected) {
+  EXPECT_EQ(jacobian_of(make(nullptr), u), expected);
+  cc::SpareCores spare;
+  spare.lend();
+  EXPECT_EQ(jacobian_of(make(&spare), u), expected);
+  EXPECT_TRUE(spare.borrow()) << "the core is given back after the Jacobian";
+}
+
+/// Every entry of J within tolerance x the largest analytic entry of the analytic Jacobian at u.
+void expect_near_analytic(const std::vector<double>& J, const std::vector<double>& u, double tolerance) {
+  double largest = 0.0;
+  for (int i = 0; i < kResiduals; ++i)
+    for (int j = 0; j < kParameters; ++j) largest = std::max(largest, std::abs(analytic(u.data(), i, j)));
+  for (int i = 0; i < kResiduals; ++i)
+    for (int j = 0; j < kParameters; ++j)
+      EXPECT_NEAR(J[i * kParameters + j], analytic(u.data(), i, j), tolerance * largest) << i << ", " << j;
+}
+
 }  // namespace
 
 TEST(ForwardDifferenceCost, EqualsCeresForwardNumericDiffBitForBitOnOneThreadOrTwo) {
@@ -62,20 +86,40 @@ TEST(ForwardDifferenceCost, EqualsCeresForwardNumericDiffBitForBitOnOneThreadOrT
   reference.SetNumResiduals(kResiduals);
   const std::vector<double> expected = jacobian_of(reference, u);
 
-  const cc::ForwardDifferenceCost serial(model, kParameters, kResiduals, 1e-5, nullptr);
-  EXPECT_EQ(jacobian_of(serial, u), expected);
-  cc::SpareCores spare;
-  spare.lend();
-  const cc::ForwardDifferenceCost two_threads(model, kParameters, kResiduals, 1e-5, &spare);
-  EXPECT_EQ(jacobian_of(two_threads, u), expected);
-  EXPECT_TRUE(spare.borrow()) << "the core is given back after the Jacobian";
+  expect_bit_for_bit_on_one_thread_or_two(
+      [](cc::SpareCores* spare) { return cc::ForwardDifferenceCost(model, kParameters, kResiduals, 1e-5, spare); }, u,
+      expected);
+  expect_near_analytic(expected, u, 1e-4);
+}
 
-  double largest = 0.0;
-  for (int i = 0; i < kResiduals; ++i)
-    for (int j = 0; j < kParameters; ++j) largest = std::max(largest, std::abs(analytic(u.data(), i, j)));
-  for (int i = 0; i < kResiduals; ++i)
-    for (int j = 0; j < kParameters; ++j)
-      EXPECT_NEAR(expected[i * kParameters + j], analytic(u.data(), i, j), 1e-4 * largest) << i << ", " << j;
+TEST(CentralDifferenceCost, EqualsCeresCentralNumericDiffBitForBitOnOneThreadOrTwo) {
+  const std::vector<double> u = {0.7, -1.3, 0.0, 2.5, -0.2};  // u_2 = 0: the minimum step sqrt(eps)
+  ceres::NumericDiffOptions nd;
+  nd.relative_step_size = 1e-6;
+  // DynamicNumericDiffCostFunction's default method is CENTRAL (the base fit's Prony-time polish used it so)
+  ceres::DynamicNumericDiffCostFunction<Functor> reference(new Functor, ceres::TAKE_OWNERSHIP, nd);
+  reference.AddParameterBlock(kParameters);
+  reference.SetNumResiduals(kResiduals);
+  const std::vector<double> expected = jacobian_of(reference, u);
+
+  expect_bit_for_bit_on_one_thread_or_two(
+      [](cc::SpareCores* spare) { return cc::CentralDifferenceCost(model, kParameters, kResiduals, 1e-6, spare); }, u,
+      expected);
+  expect_near_analytic(expected, u, 1e-7);  // O(step^2) (the forward difference of this step: about 1e-6)
+}
+
+TEST(CentralDifferenceCost, AFailingRunOnEitherSideFailsTheJacobian) {
+  auto fails_above = [](const double* u, double* r) {
+    for (int i = 0; i < kResiduals; ++i) r[i] = u[0];
+    return u[0] <= 0.5;
+  };
+  const cc::CentralDifferenceCost cost(fails_above, 1, kResiduals, 1e-6, nullptr);
+  const std::vector<double> u = {0.5};
+  std::vector<double> r(kResiduals), J(kResiduals);
+  const double* p[] = {u.data()};
+  double* j[] = {J.data()};
+  EXPECT_TRUE(cost.Evaluate(p, r.data(), nullptr));
+  EXPECT_FALSE(cost.Evaluate(p, r.data(), j)) << "the forward point u + step fails";
 }
 
 TEST(ForwardDifferenceCost, AFailingRunOnBothSidesFailsTheEvaluation) {
