@@ -679,8 +679,8 @@ TimesOutcome polish_times(const Targets& g, const std::vector<double>& x0, const
   // polishes its times (the polishes of stage 2 ran on two threads before it).
   SpareCores second_core;
   second_core.lend();
-  auto residual = std::make_shared<TimesResidual>(g);
-  auto* cost = new CentralDifferenceCost([residual](const double* u, double* r) { return (*residual)(u, r); },
+  TimesResidual residual(g);  // outlives the problem below, which owns the cost
+  auto* cost = new CentralDifferenceCost([&residual](const double* u, double* r) { return residual(u, r); },
                                          static_cast<int>(m), static_cast<int>(g.residuals()), 1e-6, &second_core);
   ceres::Problem problem;
   problem.AddResidualBlock(cost, nullptr, x.data());

@@ -53,6 +53,17 @@ std::vector<double> jacobian_of(const ceres::CostFunction& cost, const std::vect
   return J;
 }
 
+/// Ceres' own numeric Jacobian of `model` at u (DynamicNumericDiffCostFunction with `method` and this relative step).
+template <ceres::NumericDiffMethodType method>
+std::vector<double> ceres_jacobian(double relative_step, const std::vector<double>& u) {
+  ceres::NumericDiffOptions nd;
+  nd.relative_step_size = relative_step;
+  ceres::DynamicNumericDiffCostFunction<Functor, method> reference(new Functor, ceres::TAKE_OWNERSHIP, nd);
+  reference.AddParameterBlock(kParameters);
+  reference.SetNumResiduals(kResiduals);
+  return jacobian_of(reference, u);
+}
+
 /// The Jacobian of the cost made by make(spare) equals `expected` bit for bit, without a spare core and with one lent,
 /// and the lent core is given back afterwards.
 template <class Make>
@@ -79,12 +90,7 @@ void expect_near_analytic(const std::vector<double>& J, const std::vector<double
 
 TEST(ForwardDifferenceCost, EqualsCeresForwardNumericDiffBitForBitOnOneThreadOrTwo) {
   const std::vector<double> u = {0.7, -1.3, 0.0, 2.5, -0.2};  // u_2 = 0: the minimum step sqrt(eps)
-  ceres::NumericDiffOptions nd;
-  nd.relative_step_size = 1e-5;
-  ceres::DynamicNumericDiffCostFunction<Functor, ceres::FORWARD> reference(new Functor, ceres::TAKE_OWNERSHIP, nd);
-  reference.AddParameterBlock(kParameters);
-  reference.SetNumResiduals(kResiduals);
-  const std::vector<double> expected = jacobian_of(reference, u);
+  const std::vector<double> expected = ceres_jacobian<ceres::FORWARD>(1e-5, u);
 
   expect_bit_for_bit_on_one_thread_or_two(
       [](cc::SpareCores* spare) { return cc::ForwardDifferenceCost(model, kParameters, kResiduals, 1e-5, spare); }, u,
@@ -94,13 +100,8 @@ TEST(ForwardDifferenceCost, EqualsCeresForwardNumericDiffBitForBitOnOneThreadOrT
 
 TEST(CentralDifferenceCost, EqualsCeresCentralNumericDiffBitForBitOnOneThreadOrTwo) {
   const std::vector<double> u = {0.7, -1.3, 0.0, 2.5, -0.2};  // u_2 = 0: the minimum step sqrt(eps)
-  ceres::NumericDiffOptions nd;
-  nd.relative_step_size = 1e-6;
-  // DynamicNumericDiffCostFunction's default method is CENTRAL (the base fit's Prony-time polish used it so)
-  ceres::DynamicNumericDiffCostFunction<Functor> reference(new Functor, ceres::TAKE_OWNERSHIP, nd);
-  reference.AddParameterBlock(kParameters);
-  reference.SetNumResiduals(kResiduals);
-  const std::vector<double> expected = jacobian_of(reference, u);
+  // DynamicNumericDiffCostFunction's default method, which the base fit's Prony-time polish used
+  const std::vector<double> expected = ceres_jacobian<ceres::CENTRAL>(1e-6, u);
 
   expect_bit_for_bit_on_one_thread_or_two(
       [](cc::SpareCores* spare) { return cc::CentralDifferenceCost(model, kParameters, kResiduals, 1e-6, spare); }, u,
