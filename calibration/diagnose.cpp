@@ -158,27 +158,28 @@ class CandidateModel {
 
   /// Adds a log10 factor in [-1, 1] on the mu of every hyperfoam term and on the relative modulus
   /// a_i = g_i/(1 - sum g) of every Prony term of the base (the base-refit reference; no effect), with
-  /// `times` one in [-0.5, 0.5] on every Prony time tau_i, and with `exponents` one in [-0.2, 0.2] on every hyperfoam
-  /// exponent alpha_i (its sign kept). A Prony term the base holds at a_i = 0 first gets a start a factor can move
-  /// (revive_dead_prony_terms).
-  void free_base_moduli(bool times, bool exponents) {
+  /// `times` one in [-b.time_decades, b.time_decades] on every Prony time tau_i, and with `exponents` one in
+  /// [-b.exponent_decades, b.exponent_decades] on every hyperfoam exponent alpha_i (its sign kept). A Prony term the
+  /// base holds at a_i = 0 first gets a start a factor can move (revive_dead_prony_terms).
+  void free_base_moduli(bool times, bool exponents, const BaseFactorBounds& b) {
     revive_dead_prony_terms(base_);
     static const material::EffectParameterInfo factor{"modulus_factor", "factor on a base modulus", 1.0, 0.1, 10.0,
                                                       true, true, true};
-    static const material::EffectParameterInfo time{"time_factor", "factor on a base Prony time", 1.0, 0.316, 3.16,
-                                                    true, true, true};
-    static const material::EffectParameterInfo exponent{"exponent_factor", "factor on a hyperfoam exponent", 1.0, 0.63,
-                                                        1.58, true, true, true};
+    // name and log scale (each fit's bounds: b)
+    static const material::EffectParameterInfo time{
+        "time_factor", "factor on a base Prony time", 1.0, 0.01, 100.0, true, true, true};
+    static const material::EffectParameterInfo exponent{
+        "exponent_factor", "factor on a hyperfoam exponent", 1.0, 0.01, 100.0, true, true, true};
     for (std::size_t t = 0; t < base_.hyperfoam.size(); ++t)
       free_.push_back({0, BaseTarget::hyperfoam_mu, t, &factor, -1.0, 1.0});
     for (std::size_t t = 0; t < base_.prony.size(); ++t)
       free_.push_back({0, BaseTarget::prony_modulus, t, &factor, -1.0, 1.0});
     if (times)
       for (std::size_t t = 0; t < base_.prony.size(); ++t)
-        free_.push_back({0, BaseTarget::prony_time, t, &time, -0.5, 0.5});
+        free_.push_back({0, BaseTarget::prony_time, t, &time, -b.time_decades, b.time_decades});
     if (exponents)
       for (std::size_t t = 0; t < base_.hyperfoam.size(); ++t)
-        free_.push_back({0, BaseTarget::hyperfoam_exponent, t, &exponent, -0.2, 0.2});
+        free_.push_back({0, BaseTarget::hyperfoam_exponent, t, &exponent, -b.exponent_decades, b.exponent_decades});
   }
 
   const std::vector<FreeParameter>& free() const { return free_; }
@@ -565,7 +566,7 @@ CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector
   CandidateModel model(base, start_effects, campaign, noise, options);
   if (refit_base) {
     // a joint candidate has every parameter of the reference
-    model.free_base_moduli(options.base_times, options.base_exponents);
+    model.free_base_moduli(options.base_times, options.base_exponents, options.base_bounds);
     fit.base_refitted = true;
     if (start_effects.empty())
       fit.kinds.push_back("base refit (" + refitted_base_parameters(options) + ")");
@@ -1278,6 +1279,7 @@ std::optional<CandidateFit> polish_leading_singles(const CandidateJobs& c, std::
   if (leaders.empty()) challengers.clear();
   DiagnoseOptions free_all = o;
   free_all.base_times = free_all.base_exponents = true;
+  free_all.base_bounds = o.polish_bounds;
   std::vector<std::size_t> singles = leaders;  // the singles to polish: the leaders, then the challengers
   singles.insert(singles.end(), challengers.begin(), challengers.end());
   std::vector<const CandidateFit*> polish;  // their fits, then the base refit when there are challengers
@@ -1485,6 +1487,25 @@ nlohmann::json effects_fragment(const material::MaterialSpec& baseline, const Ca
   return fragment;
 }
 
+/// The follow-up for a polished winner left beyond noise while the polish kept the base's Prony times and exponents
+/// within narrower bounds (DiagnoseOptions::polish_bounds) than follow_up_polish_bounds; empty otherwise.
+std::string wider_polish_sentence(const DiagnoseOptions& options, const CandidateFit& w) {
+  const BaseFactorBounds& now = options.polish_bounds;
+  const BaseFactorBounds& wide = follow_up_polish_bounds;
+  if (w.polish_added == 0 || (now.time_decades >= wide.time_decades && now.exponent_decades >= wide.exponent_decades))
+    return "";
+  std::string kinds;
+  for (const auto& k : w.kinds) kinds += (kinds.empty() ? "" : ",") + k;
+  std::ostringstream o;
+  o << " The polish moved the base's Prony times by at most a factor " << fmt(std::pow(10.0, now.time_decades), 3)
+    << " and its hyperfoam exponents by " << fmt(std::pow(10.0, now.exponent_decades), 3)
+    << ": if the base `cushion fit` placed is further off, diagnose again with `--candidates " << kinds
+    << " --polish-bounds " << fmt(wide.time_decades) << "," << fmt(wide.exponent_decades) << "` (factors up to "
+    << fmt(std::pow(10.0, wide.time_decades), 3) << " and " << fmt(std::pow(10.0, wide.exponent_decades), 3)
+    << "; docs/physics.md 9.35).";
+  return o.str();
+}
+
 /// Verdict with a supported winner (candidates.front()): add it, its fragment, the extended material, and
 /// the tests still beyond noise.
 void winner_verdict(const material::MaterialSpec& baseline, const DiagnoseOptions& options, Diagnosis& d) {
@@ -1509,6 +1530,7 @@ void winner_verdict(const material::MaterialSpec& baseline, const DiagnoseOption
     o << ": the effect's form in cushion may not follow the data's (its family can be right while the measured effect "
          "has another functional form, e.g. an air flow whose resistance is a power of the rate), the base calibration is "
          "off there, or a further effect outside the catalogue is missing (rerun `cushion fit`, then diagnose again).";
+    o << wider_polish_sentence(options, w);
   }
   d.verdict = o.str();
 }

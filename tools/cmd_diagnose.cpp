@@ -64,6 +64,7 @@ struct DiagnoseCli {
   cushion::io::OutputFolder out;
   std::vector<std::string> candidates;
   std::vector<double> noise_uncertainty;  // --noise-uncertainty QS,DYN (empty: the defaults)
+  std::vector<double> polish_bounds;      // --polish-bounds TAU,ALPHA [decades] (empty: the defaults)
   bool held_out = false;
   bool fixed_base = false;
   bool fixed_times = false;
@@ -151,6 +152,19 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
       ->expected(2)
       ->delimiter(',')
       ->check(CLI::Range(1.0, 100.0));
+  const cushion::calibration::BaseFactorBounds polish_default = cushion::calibration::DiagnoseOptions{}.polish_bounds;
+  sub->add_option("--polish-bounds", opt->polish_bounds,
+                  "TAU,ALPHA: how far the polish may move each Prony time and each hyperfoam exponent, in decades (a "
+                  "factor in [10^-b, 10^b]; default " +
+                      cushion::io::format_double(polish_default.time_decades) + "," +
+                      cushion::io::format_double(polish_default.exponent_decades) + ", the base refit's; " +
+                      cushion::io::format_double(cushion::calibration::follow_up_polish_bounds.time_decades) + "," +
+                      cushion::io::format_double(cushion::calibration::follow_up_polish_bounds.exponent_decades) +
+                      ": what the verdict proposes when a polished winner leaves a test beyond noise; docs/physics.md "
+                      "9.35)")
+      ->expected(2)
+      ->delimiter(',')
+      ->check(CLI::Range(0.0, 2.0));
   sub->add_flag("--held-out", opt->held_out,
                 "name an effect only if it also predicts each test left out of its fit better than the base refit "
                 "(leave one test out; slower; off by default: with five tests of different kinds it vetoed the right "
@@ -178,6 +192,7 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
     o.held_out = opt->held_out;
     if (!opt->noise_uncertainty.empty())
       o.noise_uncertainty = {opt->noise_uncertainty.at(0), opt->noise_uncertainty.at(1)};
+    if (!opt->polish_bounds.empty()) o.polish_bounds = {opt->polish_bounds.at(0), opt->polish_bounds.at(1)};
     o.search_protocol = !opt->assume_protocol;
     o.base_times = !opt->fixed_times && !raw;  // from raw data the fit has placed the times (--free-tau)
     for (const auto& k : o.candidates)

@@ -366,7 +366,10 @@ TEST(DiagnoseStart, ExponentialDamageIsNamedMullinsWithAStrainDrivenSoftening) {
 // far beyond the noise (d_inf 0.95, e_d 0.423) on a stiff 65 kg/m3 foam: before the damage, friction was named and left
 // 21.4x noise (2026-12-05 benchmark); with it (cushion's form, which the truth written in the catalogue follows within
 // 1.11x noise) Mullins is named with d_inf 0.947 and e_d 0.4216 (the Ogden-Roxburgh factor at its bounds, off), the
-// quasi-static tests within 1.5x noise and the sweeps at 3.8x and 3.9x (the base's dynamic moduli; 2026-12-05).
+// quasi-static tests within 1.5x noise and the sweeps at 3.8x and 3.9x: the polish may move the base's Prony times only
+// within [0.316, 3.16] and the fit put its first time at 3.16 ms against the truth's 15.6 ms. The verdict then proposes
+// the follow-up `--candidates mullins --polish-bounds 1,0.5` (a decade on each time, a factor 3.16 on each exponent),
+// which brings every test within 1.5x noise (1.41x; docs/physics.md 9.35).
 TEST(DiagnoseStart, ExponentialDamageFarBeyondTheNoiseIsNamedMullinsFromItsDamageStart) {
   const BenchCampaign c = bench_campaign("diagnose_mullins_damage", "c017", "--base-refit scale", 2027);
   ASSERT_EQ(c.truth.at("forms").at(0).get<std::string>(), "exponential_damage") << "the generator's mix changed";
@@ -381,6 +384,14 @@ TEST(DiagnoseStart, ExponentialDamageFarBeyondTheNoiseIsNamedMullinsFromItsDamag
   for (const auto& t : d.at("candidates").at(0).at("compare").at("tests"))
     EXPECT_LT(t.at("error_over_noise").get<double>(), t.at("name").get<std::string>().starts_with("qs") ? 1.5 : 5.0)
         << t.at("name");
+  const std::string follow_up = "--candidates mullins --polish-bounds 1,0.5";
+  EXPECT_NE(d.at("verdict").get<std::string>().find(follow_up), std::string::npos) << d.at("verdict");
+
+  const nlohmann::json wide = cushion::foreign_program::diagnose_raw(c.dir, follow_up, "diag_wide");
+  ASSERT_EQ(wide.at("winner").get<std::string>(), "mullins") << wide.at("verdict");
+  for (const auto& t : wide.at("candidates").at(0).at("compare").at("tests"))
+    EXPECT_LT(t.at("error_over_noise").get<double>(), 1.5) << t.at("name");
+  EXPECT_EQ(wide.at("verdict").get<std::string>().find("--polish-bounds"), std::string::npos) << wide.at("verdict");
   fs::remove_all(c.set);
 }
 
