@@ -116,6 +116,16 @@ void revive_dead_prony_terms(material::MaterialSpec& s) {
   if (revived) s.prony = with_long_term_ratios(s.prony, a);
 }
 
+/// The cheaper model Levenberg-Marquardt's Jacobian is differenced from: the dynamic tests' fitted cycles at
+/// options.jacobian_steps_per_cycle steps a cycle, the cycles before them at half that (at most the model's own).
+CompareOptions jacobian_compare_options(const DiagnoseOptions& options) {
+  CompareOptions o = options.compare;
+  o.dynamic_steps_per_cycle = options.jacobian_steps_per_cycle;
+  o.dynamic_transient_steps_per_cycle =
+      std::min(o.dynamic_transient_steps_per_cycle, std::max(1, options.jacobian_steps_per_cycle / 2));
+  return o;
+}
+
 /// The material with the candidate effects and the campaign comparison it gives.
 class CandidateModel {
  public:
@@ -227,11 +237,10 @@ class CandidateModel {
   /// differentiation does not know the bounds), where the material may reject the value (a share above 1).
   /// A point among the last few run is answered from them, bit for bit (recent_runs.hpp, docs/physics.md 9.20).
   std::optional<CompareResult> compare_at(const double* u) const {
-    std::vector<double> inside(u, u + free_.size());
-    for (std::size_t i = 0; i < free_.size(); ++i) inside[i] = std::clamp(inside[i], free_[i].lower, free_[i].upper);
+    std::vector<double> inside = clamped(u);
     if (auto known = recent_.find(inside)) return *known;
     ++evaluations_;
-    std::optional<CompareResult> r = run_at(inside);
+    std::optional<CompareResult> r = run_at(inside, options_.compare);
     recent_.keep(std::move(inside), r);
     return r;
   }
@@ -240,23 +249,43 @@ class CandidateModel {
     if (!r) return std::numeric_limits<double>::infinity();
     return chi2_of(*r, options_.quasi_static_points);
   }
-  bool residuals_at(const double* u, double* out, std::size_t n) const {
-    const auto r = compare_at(u);
+  bool residuals_at(const double* u, double* out, std::size_t n) const { return copy_residuals(compare_at(u), out, n); }
+  /// The residuals at u of the cheaper model Levenberg-Marquardt's Jacobian is taken from (jacobian_compare_options;
+  /// not kept among the recent runs).
+  bool jacobian_residuals_at(const double* u, double* out, std::size_t n) const {
+    ++evaluations_;
+    return copy_residuals(run_at(clamped(u), jacobian_compare_options(options_)), out, n);
+  }
+  /// Model runs made, at either step (a point answered from the recent runs is not one).
+  int evaluations() const { return evaluations_; }
+  /// Whether jacobian_residuals_at runs a cheaper model than residuals_at (DiagnoseOptions::jacobian_steps_per_cycle).
+  bool jacobian_is_cheaper() const {
+    return options_.jacobian_steps_per_cycle > 0 &&
+           options_.jacobian_steps_per_cycle < options_.compare.dynamic_steps_per_cycle;
+  }
+
+ private:
+  /// u clamped to the bounds.
+  std::vector<double> clamped(const double* u) const {
+    std::vector<double> inside(u, u + free_.size());
+    for (std::size_t i = 0; i < free_.size(); ++i) inside[i] = std::clamp(inside[i], free_[i].lower, free_[i].upper);
+    return inside;
+  }
+  /// The noise-normalised residuals of r into out (n of them); false when r failed or has another count.
+  bool copy_residuals(const std::optional<CompareResult>& r, double* out, std::size_t n) const {
     if (!r) return false;
     const std::vector<double> v = normalised_residuals(*r, options_.quasi_static_points);
     if (v.size() != n) return false;
     std::copy(v.begin(), v.end(), out);
     return true;
   }
-  /// Model runs made (a point answered from the recent runs is not one).
-  int evaluations() const { return evaluations_; }
 
- private:
-  /// The model run at u (inside the bounds): nullopt when the material cannot be built or a test run fails.
-  std::optional<CompareResult> run_at(const std::vector<double>& u) const {
+  /// The model run at u (inside the bounds) with the forward-model options o: nullopt when the material cannot be built
+  /// or a test run fails.
+  std::optional<CompareResult> run_at(const std::vector<double>& u, const CompareOptions& o) const {
     try {
       const material::MaterialDefinition def = material::build_material(spec_at(u.data()), "candidate");
-      CompareResult r = compare_campaign(*def.model, campaign_, options_.compare, noise_);
+      CompareResult r = compare_campaign(*def.model, campaign_, o, noise_);
       for (const auto& t : r.tests)
         if (!t.failure.empty()) return std::nullopt;
       return r;
@@ -511,26 +540,28 @@ class BestPoint {
   std::vector<double> u_;
 };
 
-/// Bounded Levenberg-Marquardt (Ceres, forward-difference Jacobian, on two threads while `spare` lends a core) on
-/// the noise-normalised residuals, from u; u holds the solution on return. When Ceres stops with FAILURE (the model
-/// failed on both sides of a Jacobian step; Ceres then leaves u at the start) u is the best point evaluated, if it is
-/// below the start: foreign power-law air flow c013 reached cost 547 from 3401 in 9 iterations, then failed and was
-/// ranked at its start. Ceres' own update_state_every_iteration does not do this: with it the same fit still ended at
-/// its start (measured 2026-11-27).
-ceres::Solver::Summary minimise(const CandidateModel& model, std::vector<double>& u, std::size_t n_residuals,
-                                int max_iterations, SpareCores* spare, const EarlyStop& stop) {
+/// One bounded Levenberg-Marquardt solve of minimise from u (u holds its end), the Jacobian differenced from the model's
+/// cheaper runs (CandidateModel::jacobian_residuals_at) or from its own; every point run is offered to `best`.
+ceres::Solver::Summary solve_from(const CandidateModel& model, std::vector<double>& u, std::size_t n_residuals,
+                                  int max_iterations, SpareCores* spare, const EarlyStop& stop, bool cheaper_jacobian,
+                                  BestPoint& best) {
   ceres::Problem problem;
-  BestPoint best;
   const std::size_t n = u.size();
   std::vector<double> upper;
   for (const FreeParameter& f : model.free()) upper.push_back(f.upper);
+  DifferenceCost::Residuals jacobian_model;
+  if (cheaper_jacobian)
+    jacobian_model = [&model, n_residuals](const double* x, double* r) {
+      return model.jacobian_residuals_at(x, r, n_residuals);
+    };
   auto* cost = new ForwardDifferenceCost(
       [&model, &best, n, n_residuals](const double* x, double* r) {
         if (!model.residuals_at(x, r, n_residuals)) return false;
         best.offer(x, n, r, n_residuals);
         return true;
       },
-      static_cast<int>(u.size()), static_cast<int>(n_residuals), 1e-5, spare, std::move(upper));
+      static_cast<int>(u.size()), static_cast<int>(n_residuals), 1e-5, spare, std::move(upper),
+      std::move(jacobian_model));
   problem.AddResidualBlock(cost, nullptr, u.data());
   for (std::size_t i = 0; i < u.size(); ++i) {
     problem.SetParameterLowerBound(u.data(), static_cast<int>(i), model.free()[i].lower);
@@ -547,6 +578,33 @@ ceres::Solver::Summary minimise(const CandidateModel& model, std::vector<double>
   if (stop.active()) so.callbacks.push_back(&stop_callback);
   ceres::Solver::Summary summary;
   ceres::Solve(so, &problem, &summary);
+  return summary;
+}
+
+/// Bounded Levenberg-Marquardt (Ceres, forward-difference Jacobian, on two threads while `spare` lends a core) on
+/// the noise-normalised residuals, from u; u holds the solution on return. When Ceres stops with FAILURE (the model
+/// failed on both sides of a Jacobian step; Ceres then leaves u at the start) u is the best point evaluated, if it is
+/// below the start: foreign power-law air flow c013 reached cost 547 from 3401 in 9 iterations, then failed and was
+/// ranked at its start. Ceres' own update_state_every_iteration does not do this: with it the same fit still ended at
+/// its start (measured 2026-11-27).
+/// With a cheaper Jacobian (DiagnoseOptions::jacobian_steps_per_cycle), a solve that CONVERGES before max_iterations
+/// goes on from its end with the model's own Jacobian for the iterations left: an approximate Jacobian stops where
+/// J_g^T r = 0, off the minimum, or where its direction no longer lowers the cost and the trust region shrinks to
+/// nothing (seed-2027 c051, stiffness damping: dBIC -56 after 35 runs against 38 with the model's own Jacobian;
+/// docs/physics.md 9.36).
+ceres::Solver::Summary minimise(const CandidateModel& model, std::vector<double>& u, std::size_t n_residuals,
+                                int max_iterations, SpareCores* spare, const EarlyStop& stop) {
+  BestPoint best;
+  const bool cheaper = model.jacobian_is_cheaper();
+  ceres::Solver::Summary summary = solve_from(model, u, n_residuals, max_iterations, spare, stop, cheaper, best);
+  const int used = static_cast<int>(summary.iterations.size()) - 1;  // iterations[0]: the start
+  if (cheaper && summary.termination_type == ceres::CONVERGENCE && used < max_iterations) {
+    EarlyStop rest = stop;  // the early stop counts the iterations of both solves
+    rest.iteration = stop.iteration > used ? stop.iteration - used : 0;
+    const double initial_cost = summary.initial_cost;
+    summary = solve_from(model, u, n_residuals, max_iterations - used, spare, rest, false, best);
+    summary.initial_cost = initial_cost;
+  }
   if (summary.termination_type == ceres::FAILURE && best.cost() < summary.initial_cost) {
     u = best.u();  // a Jacobian column's point may lie a step beyond a bound: back inside, where it was evaluated
     for (std::size_t i = 0; i < u.size(); ++i) u[i] = std::clamp(u[i], model.free()[i].lower, model.free()[i].upper);

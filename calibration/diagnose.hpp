@@ -23,7 +23,8 @@
 ///     scored by the chi2 left after the best linear step of the base factors, from their residual Jacobian at the
 ///     start, and Levenberg-Marquardt starts from the scan's point with that step where it lowers chi2: an effect
 ///     the fitted base has partly absorbed is then not kept off by the share the base already carries), then Ceres
-///     bounded Levenberg-Marquardt with forward-difference Jacobian (parameters clamped to their bounds before each run;
+///     bounded Levenberg-Marquardt with forward-difference Jacobian (differenced from the dynamic tests run at
+///     options.jacobian_steps_per_cycle; parameters clamped to their bounds before each run;
 ///     the projected line search by bisection, cost only) on the noise-normalised residuals
 ///     (compare.hpp normalised_residuals). Candidates run on `threads` threads, longest pairs first; a thread with no
 ///     candidate left lends its core to the Jacobians and start scans of those still running (parallel_jobs.hpp).
@@ -89,6 +90,12 @@ struct DiagnoseOptions {
   CompareOptions compare;
   int quasi_static_points = 100;  ///< residual samples per quasi-static test
   int max_iterations = 12;        ///< Ceres iterations per candidate
+  /// Levenberg-Marquardt's forward-difference Jacobian is taken from the dynamic tests run at this many steps a fitted
+  /// cycle (the cycles before them at half that, at most compare.dynamic_transient_steps_per_cycle); the cost and every
+  /// point it accepts stay those of the model at compare.dynamic_steps_per_cycle. A Jacobian run costs about 0.55 of a
+  /// model run, and the Jacobians are most of a fit's runs: a diagnosis 0.73-0.93 of its time (six slow foreign campaigns,
+  /// docs/physics.md 9.36). 0 (or not below compare.dynamic_steps_per_cycle): the Jacobian from the model itself.
+  int jacobian_steps_per_cycle = 32;
   /// Best singles considered for pairs (each pair has the best one): 4. With 3, a right second family ranked 4th alone
   /// was never paired (docs/physics.md 9.15); with 5 (every family), a partner ranked 5th alone was named 6 times in 59
   /// pair verdicts of five benchmark runs, right once (seed-2026 c051), and its pair costs about 2 s of a campaign

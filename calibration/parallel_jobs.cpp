@@ -1,5 +1,6 @@
 #include "calibration/parallel_jobs.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -39,9 +40,11 @@ bool DifferenceCost::evaluate(double const* const* parameters, double* residuals
 }
 
 ForwardDifferenceCost::ForwardDifferenceCost(Residuals residuals, int parameters, int n_residuals, double relative_step,
-                                             SpareCores* spare, std::vector<double> upper_bounds)
+                                             SpareCores* spare, std::vector<double> upper_bounds,
+                                             Residuals jacobian_residuals)
     : DifferenceCost(std::move(residuals), parameters, n_residuals, relative_step, spare),
-      upper_(std::move(upper_bounds)) {
+      upper_(std::move(upper_bounds)),
+      jacobian_residuals_(std::move(jacobian_residuals)) {
   if (!upper_.empty() && upper_.size() != static_cast<std::size_t>(parameters))
     throw std::invalid_argument("ForwardDifferenceCost: one upper bound per parameter");
 }
@@ -62,29 +65,50 @@ void parallel_for(std::size_t n, SpareCores* spare, const std::function<void(std
 }
 
 bool ForwardDifferenceCost::Evaluate(double const* const* parameters, double* residuals, double** jacobians) const {
-  return evaluate(
-      parameters, residuals, jacobians, [this](int j, double step, const double* u, const double* r, double* J) {
-        std::vector<double> x(u, u + parameters_), r_step(static_cast<std::size_t>(n_residuals_));
-        x[j] = u[j] + step;
-        double signed_step = step;
-        const bool beyond_bound = !upper_.empty() && x[j] > upper_[static_cast<std::size_t>(j)];
-        if (beyond_bound || !residuals_(x.data(), r_step.data())) {  // beyond the bound or the model fails: backward
-          x[j] = u[j] - step;
-          signed_step = -step;
-          if (!residuals_(x.data(), r_step.data())) return false;
-        }
-        const double one_over_step = 1.0 / signed_step;
-        double gradient = 0.0;  // d(cost)/du_j = sum_i r_i dr_i/du_j
-        for (int i = 0; i < n_residuals_; ++i) {
-          J[i * parameters_ + j] = (r_step[i] - r[i]) * one_over_step;
-          gradient += r[i] * J[i * parameters_ + j];
-        }
-        // At the upper bound with the descent direction outward the bound is active: the zero column a clamping model
-        // gives, so that the step of the other parameters is not the projection of one that leaves the box.
-        if (beyond_bound && gradient < 0.0)
-          for (int i = 0; i < n_residuals_; ++i) J[i * parameters_ + j] = 0.0;
-        return true;
-      });
+  const double* u = parameters[0];
+  if (!residuals_(u, residuals)) return false;
+  if (!jacobians || !jacobians[0]) return true;
+  // The function the columns difference, g: `residuals` (g(u) = r(u), known), or the cheaper one, run at u beside the
+  // columns' points (index `parameters_` of the parallel loop).
+  const bool cheaper = static_cast<bool>(jacobian_residuals_);
+  const Residuals& g = cheaper ? jacobian_residuals_ : residuals_;
+  const auto n = static_cast<std::size_t>(n_residuals_), m = static_cast<std::size_t>(parameters_);
+  std::vector<double> g_points((m + 1) * n), signed_step(m);  // g at u + signed_step_j e_j (row j), g(u) (row m)
+  std::vector<char> ok(m + 1, 1), beyond_bound(m, 0);
+  parallel_for(m + (cheaper ? 1 : 0), spare_, [&](std::size_t j) {
+    double* g_j = g_points.data() + j * n;
+    if (j == m) {
+      ok[j] = jacobian_residuals_(u, g_j);
+      return;
+    }
+    const double step = numeric_step(u[j], relative_step_);
+    std::vector<double> x(u, u + m);
+    x[j] = u[j] + step;
+    signed_step[j] = step;
+    beyond_bound[j] = !upper_.empty() && x[j] > upper_[j];
+    if (beyond_bound[j] || !g(x.data(), g_j)) {  // beyond the bound or the model fails: backward
+      x[j] = u[j] - step;
+      signed_step[j] = -step;
+      ok[j] = g(x.data(), g_j);
+    }
+  });
+  if (std::count(ok.begin(), ok.end(), 0) > 0) return false;
+  const double* g_u = cheaper ? g_points.data() + m * n : residuals;
+  double* J = jacobians[0];
+  for (std::size_t j = 0; j < m; ++j) {
+    const double* g_j = g_points.data() + j * n;
+    const double one_over_step = 1.0 / signed_step[j];
+    double gradient = 0.0;  // d(cost)/du_j = sum_i r_i dr_i/du_j
+    for (std::size_t i = 0; i < n; ++i) {
+      J[i * m + j] = (g_j[i] - g_u[i]) * one_over_step;
+      gradient += residuals[i] * J[i * m + j];
+    }
+    // At the upper bound with the descent direction outward the bound is active: the zero column a clamping model
+    // gives, so that the step of the other parameters is not the projection of one that leaves the box.
+    if (beyond_bound[j] && gradient < 0.0)
+      for (std::size_t i = 0; i < n; ++i) J[i * m + j] = 0.0;
+  }
+  return true;
 }
 
 bool CentralDifferenceCost::Evaluate(double const* const* parameters, double* residuals, double** jacobians) const {

@@ -95,14 +95,21 @@ class DifferenceCost : public ceres::CostFunction {
 /// its upper bound (stiffness_damping derivative_order, started at 1: docs/physics.md 5.4b); with it kept where the
 /// bound is active, Ceres' step for the other parameters is the projection of one that leaves the box, and Mullins fits
 /// with r at its bound ended worse (docs/physics.md 9.13).
+///
+/// jacobian_residuals (empty: `residuals`): the function the columns difference, (g(u + step e_j) - g(u)) / step, where
+/// g is a cheaper model of the same residuals (diagnose: the dynamic tests at fewer time steps a cycle), run at u beside
+/// the columns. The cost and the points Levenberg-Marquardt accepts stay those of `residuals`; only the search direction
+/// is approximate. Where a residual is left at the minimum, Gauss-Newton steps with g's Jacobian J_g stop where
+/// J_g^T r = 0: off the minimum by (J^T J)^-1 (J_g - J)^T r, the cost above it by the second order (docs/physics.md 9.36).
 class ForwardDifferenceCost final : public DifferenceCost {
  public:
   ForwardDifferenceCost(Residuals residuals, int parameters, int n_residuals, double relative_step, SpareCores* spare,
-                        std::vector<double> upper_bounds = {});
+                        std::vector<double> upper_bounds = {}, Residuals jacobian_residuals = {});
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
 
  private:
   std::vector<double> upper_;
+  Residuals jacobian_residuals_;
 };
 
 /// A Ceres cost of one parameter block whose Jacobian is the central difference of `residuals` (false when the model

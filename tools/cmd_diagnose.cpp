@@ -175,6 +175,13 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
                       std::to_string(cushion::calibration::DiagnoseOptions{}.max_iterations) +
                       "; a candidate stopped by the limit is ranked with a warning)")
       ->check(CLI::Range(1, 1000));
+  sub->add_option("--jacobian-steps-per-cycle", opt->options.jacobian_steps_per_cycle,
+                  "time steps per fitted sine cycle of the cheaper model each Levenberg-Marquardt Jacobian is "
+                  "differenced from (the cycles before them at half that; default " +
+                      std::to_string(cushion::calibration::DiagnoseOptions{}.jacobian_steps_per_cycle) +
+                      "; 0: the model itself; the cost and every accepted point stay the full model's; docs/physics.md "
+                      "9.36)")
+      ->check(CLI::IsMember(std::vector<int>{0}) | CLI::Range(16, 1000));
   sub->add_flag("--assume-protocol", opt->assume_protocol,
                 "model every dynamic protocol key the campaign leaves out at its default (20 cycles, last 10 fitted; the "
                 "--preload-rate ramp; no dwell; peak-to-peak amplitude) instead of searching it as a nuisance parameter");
