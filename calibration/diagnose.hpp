@@ -31,9 +31,9 @@
 ///     A single may have more starts (the catalogue's second_start; with joint_base, a damage start for an effect with
 ///     damage parameters: options.damage_start, damage_start.hpp); the one with the larger dBIC is kept.
 ///  2b. Polish (options.polished_singles, joint only): the best singles that beat the reference are refitted from their
-///     own fit with the base's Prony times and hyperfoam exponents free too (within options.polish_bounds, wider than
-///     the reference's), and ranked by that fit's BIC (the added parameters counted); support (step 4) is still judged
-///     by the fit before the polish against the reference.
+///     own fit with the base's Prony times and hyperfoam exponents free too (within options.polish_bounds), and ranked
+///     by that fit's BIC (the added parameters counted); support (step 4) is still judged by the fit before the polish
+///     against the reference.
 ///     With options.polished_challengers (off by default), when one is, the best near misses (above the reference's
 ///     dBIC, not by strong_evidence) are polished too (challengers), each judged by its polished fit against the
 ///     reference polished alike.
@@ -92,9 +92,10 @@ struct DiagnoseOptions {
   int max_iterations = 12;        ///< Ceres iterations per candidate
   /// Levenberg-Marquardt's forward-difference Jacobian is taken from the dynamic tests run at this many steps a fitted
   /// cycle (the cycles before them at half that, at most compare.dynamic_transient_steps_per_cycle); the cost and every
-  /// point it accepts stay those of the model at compare.dynamic_steps_per_cycle. A Jacobian run costs about 0.55 of a
-  /// model run, and the Jacobians are most of a fit's runs: a diagnosis 0.73-0.93 of its time (six slow foreign campaigns,
-  /// docs/physics.md 9.36). 0 (or not below compare.dynamic_steps_per_cycle): the Jacobian from the model itself.
+  /// point it accepts stay those of the model at compare.dynamic_steps_per_cycle; a solve that converges early on it
+  /// goes on with the model's own Jacobian (minimise). The Jacobians are most of a fit's model runs: a diagnosis took
+  /// 0.75-1.06 of its time, median 0.87, on eight slow foreign campaigns side by side (docs/physics.md 9.36).
+  /// 0 (or not below compare.dynamic_steps_per_cycle): the Jacobian from the model itself.
   int jacobian_steps_per_cycle = 32;
   /// Best singles considered for pairs (each pair has the best one): 4. With 3, a right second family ranked 4th alone
   /// was never paired (docs/physics.md 9.15); with 5 (every family), a partner ranked 5th alone was named 6 times in 59
