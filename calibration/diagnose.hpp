@@ -39,10 +39,11 @@
 ///     reference polished alike.
 ///  3. Pairs (only when the best single leaves some test beyond noise): the best single combined with each of the
 ///     next `pairs_from` - 1, started from their single fits (the best single's base), the start scan over the added
-///     effect's parameters only (the best single's effect held at its fit); a joint pair that ends no better than the
-///     best single alone is fitted again from the plain sum without a scan, the lower BIC kept (docs/physics.md 9.19);
-///     a pair started from a polished single counts the parameters its polish added. A pair must also explain
-///     pair_share of the chi2 the single leaves.
+///     effect's parameters only (the best single's effect held at its fit); a joint pair whose second effect the scan
+///     left switched off (explaining less than pair_stop_share of the chi2 the best single leaves) is fitted again from
+///     the plain sum without a scan, the lower BIC kept (docs/physics.md 9.19, 9.37); a pair started from a polished
+///     single counts the parameters its polish added. A pair must also explain pair_share of the chi2 the single
+///     leaves.
 ///  4. Penalised figure: BIC = chi2 + k ln N (chi2: sum of squared noise-normalised residuals, N their
 ///     number, k the fitted parameters); dBIC = BIC_baseline - BIC_candidate (> 0: better). A candidate
 ///     is SUPPORTED when dBIC > strong_evidence (Kass & Raftery: > 10 is very strong) AND it beats by
@@ -128,7 +129,9 @@ struct DiagnoseOptions {
   /// those fits ran after their 4th iteration was 7 % of the model runs of the 60 diagnoses; but on the seed-2027 scale
   /// set (docs/physics.md 9.31) Mullins + stiffness damping (c026, the truth) had explained 3.2 % after 4 iterations and
   /// ended at 60 % without the stop, so the bound is 2 %: pairs 3/10 -> 5/10 there, the seed-2026 set's verdicts
-  /// unchanged, the mean time per campaign +1 % and +5 %. 0: never stopped.
+  /// unchanged, the mean time per campaign +1 % and +5 %. 0: never stopped. The same share marks a scanned pair whose
+  /// second effect the scan switched off, which is then fitted again from the plain sum of both single fits (with 0:
+  /// only a scanned pair no better than its single is; docs/physics.md 9.37).
   double pair_stop_share = 0.02;
   int pair_stop_iteration = 4;
   int threads = 2;

@@ -126,9 +126,10 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
                   "a pair's fit stops after " +
                       std::to_string(cushion::calibration::DiagnoseOptions{}.pair_stop_iteration) +
                       " iterations when its second effect then explains less than this share of the chi2 the best "
-                      "single leaves (default " +
+                      "single leaves, and a pair whose start scan leaves it below this share is fitted again from "
+                      "both single fits (default " +
                       cushion::io::format_double(cushion::calibration::DiagnoseOptions{}.pair_stop_share) +
-                      "; 0: never; docs/physics.md 9.21)")
+                      "; 0: never; docs/physics.md 9.21, 9.37)")
       ->check(CLI::Range(0.0, 1.0));
   sub->add_flag("--no-damage-start{false}", opt->options.damage_start,
                 "fit Mullins only from the base refit, not also from a damage start (its d_inf and e_d estimated from "
