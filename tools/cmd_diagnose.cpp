@@ -129,7 +129,8 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
                       "single leaves, and a pair whose start scan leaves it below this share is fitted again from "
                       "both single fits (default " +
                       cushion::io::format_double(cushion::calibration::DiagnoseOptions{}.pair_stop_share) +
-                      "; 0: never; docs/physics.md 9.21, 9.37)")
+                      "; 0: never stopped, and refitted only when no better than the single; docs/physics.md 9.21, "
+                      "9.37)")
       ->check(CLI::Range(0.0, 1.0));
   sub->add_flag("--no-damage-start{false}", opt->options.damage_start,
                 "fit Mullins only from the base refit, not also from a damage start (its d_inf and e_d estimated from "
