@@ -1212,15 +1212,18 @@ PairOutcome fit_joint_pair(const CandidateJobs& c, const CandidateFit& best,
   CandidateFit& scanned = out.kept;
   scanned = joint_pair_job(c, base, effects, Scan::added_effect, stop)();
   count_inherited_polish(scanned, best, c.d);
-  if (scanned.converged && scanned.delta_bic > best.delta_bic &&
-      pair_share_explained(scanned, best) >= c.options.pair_stop_share)
-    return out;
+  const double share = pair_share_explained(scanned, best);
+  const bool switched_off = share < c.options.pair_stop_share;
+  if (scanned.converged && scanned.delta_bic > best.delta_bic && !switched_off) return out;
   CandidateFit sum = joint_pair_job(c, base, effects, Scan::none, stop)();
   count_inherited_polish(sum, best, c.d);
-  out.refit_log = "diagnose: " + scanned.name() + ": its second effect explains " +
-                  fmt(100.0 * pair_share_explained(scanned, best), 2) + " % of the chi2 " + best.name() +
-                  " leaves (the scan switched it off below " + fmt(100.0 * c.options.pair_stop_share, 2) +
-                  " %): fitted again from both single fits without a scan: dBIC " + fmt(scanned.delta_bic, 4) + " -> " +
+  const std::string why = !scanned.converged ? "its scanned fit failed"
+                          : switched_off ? "its second effect explains " + fmt(100.0 * share, 2) + " % of the chi2 " +
+                                               best.name() + " leaves (the scan switched it off below " +
+                                               fmt(100.0 * c.options.pair_stop_share, 2) + " %)"
+                                         : "no better than " + best.name() + " alone";
+  out.refit_log = "diagnose: " + scanned.name() + ": " + why +
+                  ": fitted again from both single fits without a scan: dBIC " + fmt(scanned.delta_bic, 4) + " -> " +
                   fmt(sum.delta_bic, 4) + ", " + std::to_string(sum.evaluations) + " runs, " + fmt(sum.seconds, 2) +
                   " s" + (sum.converged ? "" : " (failed: " + sum.message + ")") + "\n";
   const int runs = scanned.evaluations + sum.evaluations;  // the kept fit reports both fits' cost
@@ -1249,7 +1252,7 @@ PairOutcome fit_joint_pair(const CandidateJobs& c, const CandidateFit& best,
 /// ran only when the scanned fit ended no better than the single: seed-2026 c011 (stretch-Maxwell air flow +
 /// Ogden-Roxburgh Mullins) kept a scanned Mullins + air flow 4 dBIC above Mullins alone (0.4 % of its chi2) and named
 /// Mullins alone; from the sum the pair explains 70 % and is named. A refit of every pair below pair_share gained no
-/// other verdict on two sets and named four spurious or wrong second families, all from scanned fits at 13-23 %
+/// other verdict on three sets and named four spurious or wrong second families, all from scanned fits at 13-23 %
 /// (docs/physics.md 9.37).
 ///
 /// Both fits of a pair stop after pair_stop_iteration iterations when the second effect still explains less than
