@@ -4,7 +4,10 @@
 #include <chrono>
 #include <cmath>
 #include <complex>
+#include <iomanip>
 #include <numbers>
+#include <sstream>
+#include <stdexcept>
 
 #include "calibration/fit_model.hpp"
 #include "calibration/lab.hpp"
@@ -67,6 +70,29 @@ TestCompare compare_quasi_static(const material::Material& model, const Campaign
   return c;
 }
 
+/// TestCompare::step_error of the dynamic test `c` (its model figures from `protocol`): the same protocol at half
+/// the steps per cycle, the change of |E*| and phase in noise units at each frequency, combined as noise_ratio.
+double step_error(const material::Material& model, const LabSpecimen& lab, const DynamicProtocol& protocol,
+                  const TestCompare& c, const TestNoise& noise) {
+  DynamicProtocol coarse = protocol;
+  coarse.steps_per_cycle = std::max(1, protocol.steps_per_cycle / 2);
+  coarse.transient_steps_per_cycle = std::max(1, protocol.transient_steps_per_cycle / 2);
+  DynamicRecord r;
+  try {
+    r = run_dynamic(model, lab, coarse, LabNoise{}, 0);
+  } catch (const std::exception&) {
+    return -1.0;  // not checked (compare_campaign warns)
+  }
+  std::vector<double> modulus, phase;
+  for (std::size_t i = 0; i < c.x.size(); ++i) {
+    modulus.push_back(r.dynamic_modulus_kPa[i] / kPa);
+    phase.push_back(r.phase_deg[i]);
+  }
+  TestCompare change = c;  // the coarse run in place of the measurement: its error is the change
+  change.regions = spectrum_regions(modulus, c.model, phase, c.model_phase, noise.spectrum(), "modulus", "kPa", kPa);
+  return change.noise_ratio();
+}
+
 TestCompare compare_dynamic(const material::Material& model, const Campaign& campaign, const DynamicTest& test,
                             const TestNoise& noise, const CompareOptions& o) {
   TestCompare c;
@@ -88,6 +114,8 @@ TestCompare compare_dynamic(const material::Material& model, const Campaign& cam
   }
   c.regions = spectrum_regions(c.measured, c.model, c.measured_phase, c.model_phase, noise.spectrum(), "modulus",
                                "kPa", kPa);
+  c.steps_per_cycle = o.dynamic_steps_per_cycle;
+  if (o.step_check && noise.known) c.step_error = step_error(model, lab, protocol, c, noise);
   return c;
 }
 
@@ -166,8 +194,30 @@ CompareResult compare_campaign(const material::Material& model, const Campaign& 
   for (const auto& t : result.tests)
     if (t.failure.empty() && !t.noise.known)
       result.warnings.push_back(t.name + ": too few samples to estimate the measurement noise");
+  if (options.step_check)
+    for (const auto& w : step_warnings(result, options)) result.warnings.push_back(w);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
+}
+
+std::vector<std::string> step_warnings(const CompareResult& result, const CompareOptions& o) {
+  std::vector<std::string> out;
+  for (const auto& t : result.tests) {
+    if (t.kind != "dynamic" || !t.failure.empty() || !t.noise.known) continue;
+    if (t.step_error < 0.0) {
+      out.push_back(t.name + ": time step not checked (the run at half the steps per cycle failed)");
+    } else if (t.step_error > o.step_error_warning) {
+      std::ostringstream w;
+      w << t.name << ": the time step moves |E*| and phase by " << std::setprecision(3) << t.step_error
+        << "x noise between " << t.steps_per_cycle << " and " << t.steps_per_cycle / 2
+        << " steps a cycle (first order in the step for a dashpot effect: about the error at " << t.steps_per_cycle
+        << "); rerun with --steps-per-cycle " << std::min(2 * t.steps_per_cycle, max_steps_per_cycle)
+        << " --transient-steps-per-cycle " << std::min(2 * o.dynamic_transient_steps_per_cycle, max_steps_per_cycle)
+        << " to halve it (docs/physics.md 9.39)";
+      out.push_back(w.str());
+    }
+  }
+  return out;
 }
 
 std::vector<std::string> specimen_warnings(double material_density, const Campaign& campaign) {

@@ -44,6 +44,9 @@
 
 namespace cushion::calibration {
 
+/// The most time steps per sine cycle the command lines accept (--steps-per-cycle, --transient-steps-per-cycle).
+inline constexpr int max_steps_per_cycle = 1000;
+
 struct CompareOptions {
   int quasi_static_steps = 300;     ///< model steps per loading ramp at most (record rate if lower)
   int dynamic_steps_per_cycle = 64;  ///< model time steps per sine cycle (cycles per frequency: the campaign's)
@@ -53,6 +56,14 @@ struct CompareOptions {
   int dynamic_transient_steps_per_cycle = 32;
   double preload_rate_mm_min = 30.0;  ///< dynamic preload ramp (paper 2.3) of tests that give none
   double noise_level_ratio = 1.5;   ///< error/noise at or below this: "at the noise level"
+  /// Also run each dynamic test at half the steps per cycle (fitted and transient cycles both halved) and report
+  /// how far its |E*| and phase move (TestCompare::step_error): the time-discretisation error of the sweep at the
+  /// model's step, where it is first order in the step (the dashpot effects' secant rate; docs/physics.md 9.38, 9.39).
+  /// About 1.5x the dynamic tests' cost.
+  bool step_check = false;
+  /// A step_error above this many noise units (the step alone as large as the noise) is reported as a warning naming
+  /// the test and the finer step.
+  double step_error_warning = 1.0;
 };
 
 /// Data-only noise estimates of one test.
@@ -86,6 +97,12 @@ struct TestCompare {
   std::size_t unload_begin = 0;       ///< quasi-static, indentation: index in x where unloading starts
   double hysteresis_measured = 0.0, hysteresis_model = 0.0;  ///< loop area [MPa] (quasi-static), [N mm] (indentation)
   std::string failure;                ///< the model run failed (message); regions empty then
+  /// Dynamic test with CompareOptions::step_check: RMS change of the model's |E*| and phase between the run at
+  /// `steps_per_cycle` and at half of it, in noise units at each frequency, |E*| and phase combined as in
+  /// noise_ratio [-]. For a scheme first order in the step this is about the error of the model's sweep at its own
+  /// step (docs/physics.md 9.39); < 0: not computed.
+  double step_error = -1.0;
+  int steps_per_cycle = 0;  ///< dynamic: the model's time steps per fitted sine cycle
   /// RMS error over the whole test in noise units (dynamic: |E*| and phase combined) [-]; 0 if unknown.
   double noise_ratio() const;
   /// A load/unload curve (quasi_static, indentation) rather than a spectrum (dynamic, dynamic_stiffness).
@@ -108,6 +125,10 @@ std::vector<TestNoise> estimate_noise(const Campaign& campaign);
 /// is reported with `failure` set; the others are still compared.
 CompareResult compare_campaign(const material::Material& model, const Campaign& campaign, const CompareOptions& options = {},
                                const std::vector<TestNoise>& noise = {});
+
+/// The warnings of CompareOptions::step_check (compare_campaign adds them): each dynamic test whose step_error
+/// exceeds o.step_error_warning, with the finer step that halves it, and each whose run at half the steps failed.
+std::vector<std::string> step_warnings(const CompareResult& result, const CompareOptions& o);
 
 /// Warnings when the material and the campaign do not describe the same specimen (density of the material
 /// file vs the campaign's specimen, more than 5% apart), empty when they agree or the material gives none.

@@ -1612,6 +1612,36 @@ void winner_verdict(const material::MaterialSpec& baseline, const DiagnoseOption
   d.verdict = o.str();
 }
 
+/// The winner's sweeps run once more at half the steps per cycle (CompareOptions::step_check): each dynamic test's
+/// step_error in the winner's comparison, the warnings of a step that moves a sweep beyond step_error_warning, and a
+/// sentence in the verdict then: the fitted parameters carry that error, and a finer step is proposed. About one and
+/// a half model runs after the fits (docs/physics.md 9.39).
+void check_winner_time_step(const Campaign& campaign, const DiagnoseOptions& options, Diagnosis& d) {
+  if (!d.winner) return;
+  CandidateFit& w = d.candidates[*d.winner];
+  CompareOptions o = options.compare;
+  o.step_check = true;
+  const material::MaterialDefinition def = material::build_material(w.fitted, "winner");
+  const CompareResult checked = compare_campaign(*def.model, campaign, o, d.noise);
+  if (checked.tests.size() != w.compare.tests.size()) return;
+  for (std::size_t i = 0; i < checked.tests.size(); ++i) w.compare.tests[i].step_error = checked.tests[i].step_error;
+  for (const auto& warning : step_warnings(w.compare, o)) d.warnings.push_back("with " + w.name() + ": " + warning);
+  std::string moved;
+  for (const auto& t : w.compare.tests)
+    if (t.step_error > o.step_error_warning)
+      moved += (moved.empty() ? "" : ", ") + t.name + " " + fmt(t.step_error, 3) + "x";
+  if (moved.empty()) return;
+  const int finer = std::min(2 * o.dynamic_steps_per_cycle, max_steps_per_cycle);
+  d.verdict += " The named model's sweeps move by " + moved +
+               " noise when the steps per cycle are halved: the fitted parameters "
+               "carry that time-step error (a dashpot's rate is first order in the step), so the same material gives "
+               "other sweeps at another step or in the frequency domain, and part of a misfit left beyond noise can be "
+               "the step; diagnose again with `--steps-per-cycle " +
+               std::to_string(finer) + " --transient-steps-per-cycle " +
+               std::to_string(std::min(2 * o.dynamic_transient_steps_per_cycle, max_steps_per_cycle)) +
+               "` to halve it (docs/physics.md 9.39).";
+}
+
 /// chi2 of each test of a candidate's comparison, in test order.
 std::vector<double> chi2_per_test(const CandidateFit& f, int quasi_static_points) {
   std::vector<double> chi2;
@@ -1771,6 +1801,7 @@ Diagnosis diagnose(const material::MaterialSpec& baseline, const Campaign& campa
     confirm_out_of_sample(jobs, d, log);
     if (!d.candidates.empty() && d.candidates.front().supported) {
       winner_verdict(baseline, options, d);
+      check_winner_time_step(diagnosed, options, d);
       find_rival(diagnosed, options, d, log);
     } else {
       no_winner_verdict(options, d);

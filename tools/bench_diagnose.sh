@@ -7,11 +7,13 @@
 #        PROTOCOL (recorded|unrecorded, default recorded; unrecorded: each campaign runs its own dynamic protocol and
 #        leaves its keys out of the manifest), DIAGNOSE_ARGS (more options of every diagnose call, e.g. --assume-protocol),
 #        GENERATOR_ARGS (more options of the generator, e.g. "--extra-rate 3000": a test diagnose proposed to separate
-#        two explanations, added to every campaign with the truth unchanged), BASE_REFIT (none|report|scale, default
-#        none: the generator's --base-refit; report: truth.json also says what a refitted base of the generator's OWN
-#        family leaves of the effects, and the summary splits the effect campaigns by it; scale: every effect sized so
-#        that what that refit leaves of it is 14-36x noise, i.e. visible in these tests by a measure independent of
-#        cushion), REUSE (1: keep OUT/campaigns when it holds an index.csv made with the same generator options,
+#        two explanations, added to every campaign with the truth unchanged; "--sweep-substeps 8": sweeps integrated
+#        8 steps a sample, closer to a continuous specimen than cushion's 64-step model, docs/physics.md 9.39),
+#        BASE_REFIT (none|report|scale, default none: the generator's --base-refit; report: truth.json also says what
+#        a refitted base of the generator's OWN family leaves of the effects, and the summary splits the effect
+#        campaigns by it; scale: every effect sized so that what that refit leaves of it is 14-36x noise, i.e.
+#        visible in these tests by a measure independent of cushion), REUSE (1: keep OUT/campaigns when it holds an
+#        index.csv made with the same generator options,
 #        instead of generating them again; the generator is deterministic, so this only saves its time, about 8 min
 #        with BASE_REFIT=scale), BUILD (the CMake build folder whose cushion and generator run, default build; another
 #        lets a benchmark of one code run while the default folder is rebuilt), ONLY (with REUSE=1: a space-separated
@@ -125,6 +127,16 @@ def worst_ratio(compare):
     """The largest error/noise over the tests of a comparison (report.json "tests"), None when no test has one."""
     return max((t["error_over_noise"] for t in compare["tests"] if t.get("error_over_noise") is not None), default=None)
 
+def named_step_error(camp):
+    """The largest time-step error estimate of the named model's sweeps (diagnose's step check, report.json
+    step_error_over_noise of the winner's comparison), None without a winner or a check."""
+    path = os.path.join(camp, "diag", "report.json")
+    r = json.load(open(path)) if os.path.exists(path) else {}
+    if not r.get("winner") or not r.get("candidates") or "compare" not in r["candidates"][0]:
+        return None
+    return max((t["step_error_over_noise"] for t in r["candidates"][0]["compare"]["tests"]
+                if "step_error_over_noise" in t), default=None)
+
 def verdict_of(camp):
     status, fit_s, diag_s = open(os.path.join(camp, "bench_status.txt")).read().split()
     seconds = float(fit_s) + float(diag_s)
@@ -193,7 +205,8 @@ for line in csv.DictReader(open(os.path.join(out, "campaigns", "index.csv"))):
                      verdict="+".join(named), rival="+".join(rival) or "-", right=right, baseline_error_over_noise=baseline,
                      after_error_over_noise=after, seconds=seconds, left_by_foreign_refit=left,
                      weaker_member_left=weaker, truth_in_cushion_error_over_noise=truth_worst, truth_map=truth_map,
-                     verdict_lists_tests_beyond_noise=lists_tests_beyond_noise(camp)))
+                     verdict_lists_tests_beyond_noise=lists_tests_beyond_noise(camp),
+                     named_step_error_over_noise=named_step_error(camp)))
 
 def kind(label):
     return "control" if label == "control" else ("pair" if "+" in label else "single")
@@ -283,6 +296,13 @@ if after:
     p(f"worst error/noise after adding the named effect: {worst['after_error_over_noise']:.3g} ({worst['campaign']}, "
       f"truth {worst['truth']}, named {worst['verdict']}); median over {len(after)} campaigns with a verdict effect "
       f"{statistics.median(r['after_error_over_noise'] for r in after):.3g}")
+stepped = [r for r in rows if r["named_step_error_over_noise"] is not None]
+if stepped:
+    worst = max(stepped, key=lambda r: r["named_step_error_over_noise"])
+    beyond = sum(1 for r in stepped if r["named_step_error_over_noise"] > 1.0)
+    p(f"time step of the named model's sweeps (diagnose's step check, docs/physics.md 9.39): beyond 1 noise unit on "
+      f"{beyond}/{len(stepped)}, largest {worst['named_step_error_over_noise']:.3g} ({worst['campaign']}, named "
+      f"{worst['verdict']})")
 # Where the family's form matches: the truth written in cushion's catalogue reproduces its campaign within 1.5x noise
 # on every test (tools/foreign_truth.py; the effect's own equation, or on another strain measure). There the error
 # after the named effect must be at the noise level; elsewhere the verdict must list the tests left beyond it.

@@ -24,7 +24,11 @@ struct CompareCli {
   std::vector<std::string> runs;
   cushion::io::OutputFolder out;
   std::string label, history;
-  cushion::calibration::CompareOptions model;
+  cushion::calibration::CompareOptions model = [] {
+    cushion::calibration::CompareOptions o;
+    o.step_check = true;
+    return o;
+  }();
 };
 
 /// Before any computation: every --run folder exists, the output folder and the history folder can be written.
@@ -58,6 +62,9 @@ const cushion::tools::Registrar reg{"compare", [](CLI::App& app) {
   sub->add_option("--label", opt->label, "model version name for the report and the history (default: material name)");
   sub->add_option("--history", opt->history, "folder of the run history (history.csv and history_plot.png), appended");
   cushion::tools::add_forward_model_options(sub, opt->model);
+  sub->add_flag("--no-step-check{false}", opt->model.step_check,
+                "skip the run of each dynamic test at half the steps per cycle that estimates the sweep's time-step "
+                "error (summary.md, report.json step_error_over_noise; docs/physics.md 9.39)");
   sub->callback([opt] {
     using namespace cushion::calibration;
     const bool with_material = opt->files.size() == 2;

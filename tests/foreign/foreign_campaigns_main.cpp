@@ -1,7 +1,7 @@
 // foreign_campaigns --out DIR --count N --seed S [--pairs P] [--controls C] [--dynamic-noise amplitude|reading]
 //                   [--protocol recorded|unrecorded]
 //                   [--extra-rate MM_MIN]... [--extra-preload STRAIN]... [--extra-hold S]...
-//                   [--base-refit none|report|scale] [--only NAME]...
+//                   [--base-refit none|report|scale] [--only NAME]... [--sweep-substeps N]
 // Test-data generation for the diagnose benchmark (issue 15), independent of cushion's material/ and
 // calibration/: writes N seeded campaigns DIR/c000 ... in cushion's campaign format, each with truth.json,
 // and DIR/index.csv. Defaults: P = C = round(N/6). Deterministic for a seed.
@@ -23,7 +23,7 @@ int usage(const std::string& message) {
       << "usage: foreign_campaigns --out DIR --count N --seed S [--pairs P] [--controls C]\n"
          "                         [--dynamic-noise amplitude|reading] [--protocol recorded|unrecorded]\n"
          "                         [--extra-rate MM_MIN]... [--extra-preload STRAIN]... [--extra-hold S]...\n"
-         "                         [--base-refit none|report|scale] [--only NAME]...\n"
+         "                         [--base-refit none|report|scale] [--only NAME]... [--sweep-substeps N]\n"
          "  N campaigns DIR/c000... (P with two effect families, C controls without effect, the rest one\n"
          "  family each, balanced over families and forms), each campaign.json + CSV + truth.json +\n"
          "  drawn_noise.json (the sweeps' |E*| and phase noise per frequency), and\n"
@@ -35,7 +35,9 @@ int usage(const std::string& message) {
          "  --base-refit: report also records in truth.json what a refitted base of the generator's own family\n"
          "  leaves of the effects; scale sizes each effect by that instead of by its difference from the true\n"
          "  base (default none).\n"
-         "  --only: write just the campaign so named (c038: the 39th), the same as in the whole set.\n";
+         "  --only: write just the campaign so named (c038: the 39th), the same as in the whole set.\n"
+         "  --sweep-substeps: integration steps of the foam per sample of a sweep (default 1, one a sample, the\n"
+         "  dashpots' secant rate then lags by half a sample interval as in cushion's model; n: n times less).\n";
   return message.empty() ? 0 : 2;
 }
 
@@ -43,7 +45,7 @@ int usage(const std::string& message) {
 
 int main(int argc, char** argv) {
   std::string out, dynamic_noise = "amplitude", protocol = "recorded", base_refit = "none";
-  long count = -1, pairs = -1, controls = -1;
+  long count = -1, pairs = -1, controls = -1, sweep_substeps = 1;
   long long seed = -1;
   std::vector<double> extra_rates, extra_preloads, extra_holds;
   std::set<std::string> only;
@@ -62,6 +64,8 @@ int main(int argc, char** argv) {
       else if (a == "--protocol") protocol = v;
       else if (a == "--base-refit") base_refit = v;
       else if (a == "--only") only.insert(v);
+      else if (a == "--sweep-substeps")
+        sweep_substeps = std::stol(v);
       else if (a == "--extra-rate")
         extra_rates.push_back(std::stod(v));
       else if (a == "--extra-preload")
@@ -84,12 +88,14 @@ int main(int argc, char** argv) {
     if (!(p > 0.0 && p < 0.9)) return usage("--extra-preload: a nominal preload strain in (0, 0.9)");
   for (double h : extra_holds)
     if (!(h >= 0.0 && h <= 1e4)) return usage("--extra-hold: a hold in [0, 1e4] s");
+  if (!(sweep_substeps >= 1 && sweep_substeps <= 1000)) return usage("--sweep-substeps: an integer in [1, 1000]");
   if (pairs < 0) pairs = std::lround(count / 6.0);
   if (controls < 0) controls = std::lround(count / 6.0);
   try {
     foreign_bench::TestPlan plan = foreign_bench::standard_plan();
     plan.noise.dynamic_relative_to_reading = dynamic_noise == "reading";
     plan.unrecorded_protocol = protocol == "unrecorded";
+    for (auto& d : plan.dynamic) d.integration_substeps = static_cast<int>(sweep_substeps);
     for (double r : extra_rates) plan.extra_quasi_static.push_back(foreign_bench::extra_rate(r));
     for (double p : extra_preloads) plan.extra_dynamic.push_back(foreign_bench::extra_preload(plan, p));
     for (double h : extra_holds) plan.extra_quasi_static.push_back(foreign_bench::extra_hold(h));

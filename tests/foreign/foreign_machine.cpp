@@ -150,9 +150,14 @@ DynamicRecord run_dynamic(const BaseFoam& foam, const std::vector<EffectSpec>& e
     const double omega = 2.0 * std::numbers::pi * f, dt = 1.0 / (f * p.steps_per_cycle);
     const double U = displacement_amplitude_mm(p.acceleration_peak_to_peak_m_s2, f);
     std::vector<double> time_s, displacement_mm, force_N;
+    const int sub = std::max(1, p.integration_substeps);
     for (int k = 1; k <= steps; ++k) {
       const double t = k * dt, u = preload_mm + U * std::sin(omega * t);
-      const double stress_kPa = foam_specimen.step(u / H, dt);
+      double stress_kPa = 0.0;
+      for (int j = 1; j <= sub; ++j) {  // sub = 1: t_j = t, u_j = u
+        const double t_j = ((k - 1) + static_cast<double>(j) / sub) * dt;
+        stress_kPa = foam_specimen.step((preload_mm + U * std::sin(omega * t_j)) / H, dt / sub);
+      }
       if (k <= fit_from) continue;
       time_s.push_back(t);
       displacement_mm.push_back(u);
