@@ -72,8 +72,8 @@ TestCompare compare_quasi_static(const material::Material& model, const Campaign
 
 /// TestCompare::step_error of the dynamic test `c` (its model figures from `protocol`): the same protocol at half
 /// the steps per cycle, the change of |E*| and phase in noise units at each frequency, combined as noise_ratio.
-double step_error(const material::Material& model, const LabSpecimen& lab, const DynamicProtocol& protocol,
-                  const TestCompare& c, const TestNoise& noise) {
+double sweep_step_error(const material::Material& model, const LabSpecimen& lab, const DynamicProtocol& protocol,
+                        const TestCompare& c, const TestNoise& noise) {
   DynamicProtocol coarse = protocol;
   coarse.steps_per_cycle = std::max(1, protocol.steps_per_cycle / 2);
   coarse.transient_steps_per_cycle = std::max(1, protocol.transient_steps_per_cycle / 2);
@@ -115,7 +115,7 @@ TestCompare compare_dynamic(const material::Material& model, const Campaign& cam
   c.regions = spectrum_regions(c.measured, c.model, c.measured_phase, c.model_phase, noise.spectrum(), "modulus",
                                "kPa", kPa);
   c.steps_per_cycle = o.dynamic_steps_per_cycle;
-  if (o.step_check && noise.known) c.step_error = step_error(model, lab, protocol, c, noise);
+  if (o.step_check && noise.known) c.step_error = sweep_step_error(model, lab, protocol, c, noise);
   return c;
 }
 
