@@ -1639,7 +1639,8 @@ void check_winner_time_step(const Campaign& campaign, const DiagnoseOptions& opt
                "the step; diagnose again with `--steps-per-cycle " +
                std::to_string(finer) + " --transient-steps-per-cycle " +
                std::to_string(std::min(2 * o.dynamic_transient_steps_per_cycle, max_steps_per_cycle)) +
-               "` to halve it (docs/physics.md 9.39).";
+               "` to halve it; the ranking of the damping families can change with the step (three of 16 air-flow "
+               "and stiffness-damping verdicts did on step-converged benchmark data; docs/physics.md 9.39).";
 }
 
 /// chi2 of each test of a candidate's comparison, in test order.
