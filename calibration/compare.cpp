@@ -70,18 +70,28 @@ TestCompare compare_quasi_static(const material::Material& model, const Campaign
   return c;
 }
 
-/// TestCompare::step_error of the dynamic test `c` (its model figures from `protocol`): the same protocol at half
-/// the steps per cycle, the change of |E*| and phase in noise units at each frequency, combined as noise_ratio.
-double sweep_step_error(const material::Material& model, const LabSpecimen& lab, const DynamicProtocol& protocol,
-                        const TestCompare& c, const TestNoise& noise) {
-  DynamicProtocol coarse = protocol;
-  coarse.steps_per_cycle = std::max(1, protocol.steps_per_cycle / 2);
-  coarse.transient_steps_per_cycle = std::max(1, protocol.transient_steps_per_cycle / 2);
+/// The specimen of a campaign as the dynamic forward model (lab.hpp run_dynamic) takes it.
+LabSpecimen lab_of(const Campaign& campaign) {
+  return {campaign.specimen.length, campaign.specimen.width, campaign.specimen.thickness, 65.0};
+}
+
+/// The protocol of dynamic test `test` at the options' steps per cycle and preload rate.
+DynamicProtocol dynamic_protocol(const DynamicTest& test, const CompareOptions& o) {
+  return protocol_of(test, o.dynamic_steps_per_cycle, o.dynamic_transient_steps_per_cycle, o.preload_rate_mm_min);
+}
+
+/// TestCompare::step_error of the dynamic test `c` (compared at o's steps): `test` at half the steps per cycle, the
+/// change of |E*| and phase in noise units at each frequency, combined as noise_ratio; -1 when that run fails.
+double sweep_step_error(const material::Material& model, const Campaign& campaign, const DynamicTest& test,
+                        const CompareOptions& o, const TestCompare& c) {
+  DynamicProtocol coarse = dynamic_protocol(test, o);
+  coarse.steps_per_cycle = std::max(1, coarse.steps_per_cycle / 2);
+  coarse.transient_steps_per_cycle = std::max(1, coarse.transient_steps_per_cycle / 2);
   DynamicRecord r;
   try {
-    r = run_dynamic(model, lab, coarse, LabNoise{}, 0);
+    r = run_dynamic(model, lab_of(campaign), coarse, LabNoise{}, 0);
   } catch (const std::exception&) {
-    return -1.0;  // not checked (compare_campaign warns)
+    return -1.0;  // not checked (step_warnings says so)
   }
   std::vector<double> modulus, phase;
   for (std::size_t i = 0; i < c.x.size(); ++i) {
@@ -89,7 +99,7 @@ double sweep_step_error(const material::Material& model, const LabSpecimen& lab,
     phase.push_back(r.phase_deg[i]);
   }
   TestCompare change = c;  // the coarse run in place of the measurement: its error is the change
-  change.regions = spectrum_regions(modulus, c.model, phase, c.model_phase, noise.spectrum(), "modulus", "kPa", kPa);
+  change.regions = spectrum_regions(modulus, c.model, phase, c.model_phase, c.noise.spectrum(), "modulus", "kPa", kPa);
   return change.noise_ratio();
 }
 
@@ -101,10 +111,7 @@ TestCompare compare_dynamic(const material::Material& model, const Campaign& cam
   c.use = use_name(test.use);
   c.preload = test.preload_strain;
   c.noise = noise;
-  const LabSpecimen lab{campaign.specimen.length, campaign.specimen.width, campaign.specimen.thickness, 65.0};
-  const DynamicProtocol protocol =
-      protocol_of(test, o.dynamic_steps_per_cycle, o.dynamic_transient_steps_per_cycle, o.preload_rate_mm_min);
-  const DynamicRecord r = run_dynamic(model, lab, protocol, LabNoise{}, 0);
+  const DynamicRecord r = run_dynamic(model, lab_of(campaign), dynamic_protocol(test, o), LabNoise{}, 0);
   c.x = test.moduli.frequency;
   c.measured = modulus_amplitude(test.moduli);
   c.measured_phase = modulus_phase(test.moduli);
@@ -115,7 +122,6 @@ TestCompare compare_dynamic(const material::Material& model, const Campaign& cam
   c.regions = spectrum_regions(c.measured, c.model, c.measured_phase, c.model_phase, noise.spectrum(), "modulus",
                                "kPa", kPa);
   c.steps_per_cycle = o.dynamic_steps_per_cycle;
-  if (o.step_check && noise.known) c.step_error = sweep_step_error(model, lab, protocol, c, noise);
   return c;
 }
 
@@ -194,10 +200,20 @@ CompareResult compare_campaign(const material::Material& model, const Campaign& 
   for (const auto& t : result.tests)
     if (t.failure.empty() && !t.noise.known)
       result.warnings.push_back(t.name + ": too few samples to estimate the measurement noise");
-  if (options.step_check)
+  if (options.step_check) {
+    add_step_errors(model, campaign, options, result);
     for (const auto& w : step_warnings(result, options)) result.warnings.push_back(w);
+  }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
+}
+
+void add_step_errors(const material::Material& model, const Campaign& campaign, const CompareOptions& o,
+                     CompareResult& result) {
+  for (const DynamicTest& test : campaign.dynamic)
+    for (TestCompare& c : result.tests)
+      if (c.kind == "dynamic" && c.name == test.name && c.failure.empty() && c.noise.known)
+        c.step_error = sweep_step_error(model, campaign, test, o, c);
 }
 
 std::vector<std::string> step_warnings(const CompareResult& result, const CompareOptions& o) {

@@ -126,6 +126,12 @@ std::vector<TestNoise> estimate_noise(const Campaign& campaign);
 CompareResult compare_campaign(const material::Material& model, const Campaign& campaign, const CompareOptions& options = {},
                                const std::vector<TestNoise>& noise = {});
 
+/// CompareOptions::step_check on a comparison made already: each dynamic test of `result` (compared with `model` at
+/// o's steps, known noise, no failure) run again at half the steps per cycle, its TestCompare::step_error filled
+/// (compare_campaign does this with step_check; diagnose on the model it names, whose comparison it has).
+void add_step_errors(const material::Material& model, const Campaign& campaign, const CompareOptions& o,
+                     CompareResult& result);
+
 /// The warnings of CompareOptions::step_check (compare_campaign adds them): each dynamic test whose step_error
 /// exceeds o.step_error_warning, with the finer step that halves it, and each whose run at half the steps failed.
 std::vector<std::string> step_warnings(const CompareResult& result, const CompareOptions& o);

@@ -1612,19 +1612,15 @@ void winner_verdict(const material::MaterialSpec& baseline, const DiagnoseOption
   d.verdict = o.str();
 }
 
-/// The winner's sweeps run once more at half the steps per cycle (CompareOptions::step_check): each dynamic test's
-/// step_error in the winner's comparison, the warnings of a step that moves a sweep beyond step_error_warning, and a
-/// sentence in the verdict then: the fitted parameters carry that error, and a finer step is proposed. About one and
-/// a half model runs after the fits (docs/physics.md 9.39).
+/// The winner's sweeps run once more at half the steps per cycle (CompareOptions::step_check, add_step_errors on the
+/// winner's comparison): each dynamic test's step_error, the warnings of a step that moves a sweep beyond
+/// step_error_warning, and a sentence in the verdict then: the fitted parameters carry that error, and a finer step is
+/// proposed. Half a model run's sweeps after the fits (docs/physics.md 9.39).
 void check_winner_time_step(const Campaign& campaign, const DiagnoseOptions& options, Diagnosis& d) {
   if (!d.winner) return;
   CandidateFit& w = d.candidates[*d.winner];
-  CompareOptions o = options.compare;
-  o.step_check = true;
-  const material::MaterialDefinition def = material::build_material(w.fitted, "winner");
-  const CompareResult checked = compare_campaign(*def.model, campaign, o, d.noise);
-  if (checked.tests.size() != w.compare.tests.size()) return;
-  for (std::size_t i = 0; i < checked.tests.size(); ++i) w.compare.tests[i].step_error = checked.tests[i].step_error;
+  const CompareOptions& o = options.compare;
+  add_step_errors(*material::build_material(w.fitted, "winner").model, campaign, o, w.compare);
   for (const auto& warning : step_warnings(w.compare, o)) d.warnings.push_back("with " + w.name() + ": " + warning);
   std::string moved;
   for (const auto& t : w.compare.tests)
