@@ -170,14 +170,20 @@ const std::vector<Entry>& entries() {
           "n: the damping stiffness scales as J^-n with the compression (0: as given; 2: a constant nominal damping "
           "coefficient in a uniaxial test at nu = 0, where C_d dE/dt gives a nominal stress l^2 C_d de/dt); diagnose "
           "holds it (fitted, it lost two singles of the scale set; docs/physics.md 9.23)",
-          0.0, -2.0, 4.0, false, false, false}},
+          0.0, -2.0, 4.0, false, false, false},
+         {"nominal_tangent_share",
+          "m: share of the initial-stress term sym(C^-1 E_dot S_e) in the current tangent (with w > 0): 1 makes it the "
+          "nominal tangent dP/dF, whose damping in a uniaxial test at nu = 0 is beta_s E_t l_dot (E_t the slope of the "
+          "force-deflection curve: a loss factor omega beta_s at every preload); 0: the Green-Lagrange tangent dS/dE; "
+          "diagnose fits the single with both, held, and keeps the better (docs/physics.md 9.40)",
+          0.0, 0.0, 1.0, false, false, false, 0.0, "", 1.0, 0.0}},
         false,
         true},
        [](const BuildContext& c) -> std::shared_ptr<const Material> {
          return std::make_shared<StiffnessDampingEffect>(
              c.inner, c.reference_base, c.value.at("beta_s"), c.value.at("current_tangent_share"),
-             c.value.at("derivative_order"), c.value.at("order_reference_frequency_Hz"),
-             c.value.at("stretch_exponent"));
+             c.value.at("derivative_order"), c.value.at("order_reference_frequency_Hz"), c.value.at("stretch_exponent"),
+             c.value.at("nominal_tangent_share"));
        }},
   };
   return table;

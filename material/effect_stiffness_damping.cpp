@@ -24,14 +24,14 @@ SpringPotBank checked_bank(double order) {
 StiffnessDampingEffect::StiffnessDampingEffect(std::shared_ptr<const Material> inner,
                                                std::shared_ptr<const Hyperelastic> elastic_base, double beta_s,
                                                double current_share, double order, double reference_frequency_Hz,
-                                               double stretch_exponent)
+                                               double stretch_exponent, double nominal_share)
     : StiffnessDampingEffect(std::move(inner), std::move(elastic_base), beta_s, current_share, checked_bank(order),
-                             reference_frequency_Hz, stretch_exponent) {}
+                             reference_frequency_Hz, stretch_exponent, nominal_share) {}
 
 StiffnessDampingEffect::StiffnessDampingEffect(std::shared_ptr<const Material> inner,
                                                std::shared_ptr<const Hyperelastic> elastic_base, double beta_s,
                                                double current_share, SpringPotBank bank, double reference_frequency_Hz,
-                                               double stretch_exponent)
+                                               double stretch_exponent, double nominal_share)
     : EffectDecorator(std::move(inner), bank.memory_size(6)),
       base_(checked(std::move(elastic_base))),
       C0_(base_->evaluate(Mat3::Identity()).dS_dE),
@@ -39,19 +39,28 @@ StiffnessDampingEffect::StiffnessDampingEffect(std::shared_ptr<const Material> i
       share_(current_share),
       bank_(std::move(bank)),
       coefficient_(beta_s * std::pow(2.0 * std::numbers::pi * reference_frequency_Hz, 1.0 - bank_.order())),
-      exponent_(stretch_exponent) {
+      exponent_(stretch_exponent),
+      nominal_(nominal_share) {
   if (!(beta_ >= 0.0) || !std::isfinite(beta_)) throw std::invalid_argument("stiffness_damping: beta_s must be >= 0");
   if (!(share_ >= 0.0 && share_ <= 1.0))
     throw std::invalid_argument("stiffness_damping: current_tangent_share must lie in [0, 1]");
   if (!(reference_frequency_Hz > 0.0) || !std::isfinite(reference_frequency_Hz))
     throw std::invalid_argument("stiffness_damping: order_reference_frequency_Hz must be > 0");
   if (!std::isfinite(exponent_)) throw std::invalid_argument("stiffness_damping: stretch_exponent must be finite");
+  if (!(nominal_ >= 0.0 && nominal_ <= 1.0))
+    throw std::invalid_argument("stiffness_damping: nominal_tangent_share must lie in [0, 1]");
 }
 
 Mat6 StiffnessDampingEffect::damping_tangent(const Mat3& F) const {
   const double stretch_factor = exponent_ == 0.0 ? 1.0 : std::pow(F.determinant(), -exponent_);
   if (share_ == 0.0) return stretch_factor * C0_;
-  return stretch_factor * ((1.0 - share_) * C0_ + share_ * base_->evaluate(F).dS_dE);
+  const ElasticEval elastic = base_->evaluate(F);
+  Mat6 current = elastic.dS_dE;
+  if (nominal_ > 0.0) {  // + m G, G : X = sym(C^-1 X S_e) = (C^-1 X S_e + S_e X C^-1)/2
+    const Mat3 Ci = (F.transpose() * F).inverse(), S_e = from_voigt_stress(elastic.S);
+    current += (0.5 * nominal_) * (box_voigt(Ci, S_e) + box_voigt(S_e, Ci));
+  }
+  return stretch_factor * ((1.0 - share_) * C0_ + share_ * current);
 }
 
 PointResponse StiffnessDampingEffect::integrate(const Mat3& F_old, const Mat3& F_new, double dt,
@@ -95,6 +104,7 @@ std::string StiffnessDampingEffect::describe() const {
   if (share_ > 0.0) o << ", current-tangent share " << share_;
   if (bank_.order() < 1.0) o << ", fractional order " << bank_.order();
   if (exponent_ != 0.0) o << ", stiffness x J^-" << exponent_;
+  if (share_ > 0.0 && nominal_ > 0.0) o << ", nominal-tangent share " << nominal_;
   o << ") over " << inner_->describe();
   return o.str();
 }

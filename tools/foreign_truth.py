@@ -24,8 +24,9 @@ The generator works in 1D at nu = 0 with free laterals (stretch l = 1 - e); cush
                           strain measure share 1)
   friction                k (E - E_p), |.| <= s_y on E = (l^2 - 1)/2                      jenkins (strain measure)
   stiffness damping       beta_s C_d D^q E, C_d the current (w = 1) or initial (w = 0) tangent  stiffness_proportional
-                          (w = 1, q = 1), fractional (w = 0, beta_s (2 pi f_r)^(1-q) 2 sum mu_i = c, stretch
-                          exponent 2: a constant nominal coefficient about each preload): strain measure
+                          (w = 1, q = 1, nominal-tangent share 1: P = beta_s E_t l', same), fractional (w = 0,
+                          beta_s (2 pi f_r)^(1-q) 2 sum mu_i = c, stretch exponent 2: a constant nominal
+                          coefficient about each preload): strain measure
 """
 import json
 import math
@@ -94,7 +95,7 @@ def effect_of(family, p, base, where):
                 "yield_stress_kPa": param(p, "yield_stress_kPa", where)}, "strain measure"
     if family == "stiffness_damping" and form == "stiffness_proportional":
         return {"kind": "stiffness_damping", "beta_s": param(p, "beta_s", where), "current_tangent_share": 1.0,
-                "derivative_order": 1.0}, "strain measure"
+                "nominal_tangent_share": 1.0, "derivative_order": 1.0}, "same"
     if family == "stiffness_damping" and form == "fractional":
         q, c = param(p, "order_q", where), param(p, "coefficient_kPa_s_pow_q", where)
         initial_modulus = 2.0 * sum(param(h, "mu_kPa", where + ": base.hyperfoam") for h in base["hyperfoam"])

@@ -72,26 +72,31 @@ TEST(DiagnoseRival, TheNamedSeparatingTestTellsTheFamiliesApart) {
   fs::remove_all(extra);
 }
 
+// Friction beats air flow by more than 10 in dBIC, but not once each test's noise estimate may be off by its
+// uncertainty: the air flow is named as a rival, and with --noise-uncertainty 1,1 (the estimates taken as exact) it is
+// not. Seed-2027 c043 (Bouc-Wen friction + fractional damping, diagnosed with friction and air flow only): friction
+// dBIC 915.6 against 842.6, least gap -21.9 (2026-12-07). Until 2026-12-06 this test ran on seed-2026 c040 (stiffness
+// damping against air flow), whose stiffness damping on the nominal tangent (docs/physics.md 9.40) now wins clearly.
 TEST(DiagnoseRival, APreferenceThatRestsOnTheNoiseEstimatesNamesARival) {
   const fs::path dir =
-      cushion::foreign_program::generate("rival_reweighted", 60, 2026, 10, 10, "--base-refit scale --only c040");
-  std::ifstream in(dir / "c040" / "truth.json");
+      cushion::foreign_program::generate("rival_reweighted", 60, 2027, 10, 10, "--base-refit scale --only c043");
+  std::ifstream in(dir / "c043" / "truth.json");
   const nlohmann::json truth = nlohmann::json::parse(in);
-  ASSERT_EQ(truth.at("forms").at(0).get<std::string>(), "secant_proportional") << "the generator's mix changed";
+  ASSERT_EQ(truth.at("forms").at(0).get<std::string>(), "bouc_wen") << "the generator's mix changed";
 
-  const std::string candidates = "--candidates stiffness_damping,pneumatic";
-  const nlohmann::json d = cushion::foreign_program::diagnose_raw(dir / "c040", candidates);
+  const std::string candidates = "--candidates friction,pneumatic";
+  const nlohmann::json d = cushion::foreign_program::diagnose_raw(dir / "c043", candidates);
   const std::string verdict = d.at("verdict");
-  EXPECT_EQ(d.at("winner"), "stiffness_damping") << verdict;
+  EXPECT_EQ(d.at("winner"), "friction") << verdict;
   ASSERT_TRUE(d.at("rival").is_object()) << verdict;
   EXPECT_EQ(d.at("rival").at("name"), "pneumatic");
-  EXPECT_GT(delta_bic_of(d, "stiffness_damping") - delta_bic_of(d, "pneumatic"), 10.0);
+  EXPECT_GT(delta_bic_of(d, "friction") - delta_bic_of(d, "pneumatic"), 10.0);
   EXPECT_LE(d.at("rival").at("least_gap").get<double>(), 10.0);
   EXPECT_NE(verdict.find("so the preference rests on the noise estimates"), std::string::npos) << verdict;
 
   const nlohmann::json e =
-      cushion::foreign_program::diagnose_raw(dir / "c040", candidates + " --noise-uncertainty 1,1", "diag_plain");
-  EXPECT_EQ(e.at("winner"), "stiffness_damping") << e.at("verdict");
+      cushion::foreign_program::diagnose_raw(dir / "c043", candidates + " --noise-uncertainty 1,1", "diag_plain");
+  EXPECT_EQ(e.at("winner"), "friction") << e.at("verdict");
   EXPECT_TRUE(e.at("rival").is_null()) << e.at("verdict");
   fs::remove_all(dir);
 }
