@@ -141,7 +141,8 @@ class CandidateModel {
           effects_[e].parameters[p.name] = 0.0;  // a pair started from a single's fit may carry the single's value
           continue;
         }
-        if (!p.fit || !fitted_here(*info, p, effects_[e])) {
+        const bool fitted = p.fit || (p.polished_only && options_.polishing);
+        if (!fitted || !fitted_here(*info, p, effects_[e])) {
           if (p.diagnose_value && !effects_[e].parameters.count(p.name))
             effects_[e].parameters[p.name] = *p.diagnose_value;  // the form diagnose fits (pneumatic drag)
           continue;
@@ -1329,6 +1330,33 @@ double polished_base_gain(const Diagnosis& d) {
   return p && p->converged ? std::max(gain, p->delta_bic) : gain;
 }
 
+/// The parameters of `effects` the catalogue fits in the polish only (EffectParameterInfo::polished_only), "kind name"
+/// each, comma-separated; empty when none.
+std::string polished_only_names(const std::vector<material::EffectSpec>& effects) {
+  std::string names;
+  for (const auto& e : effects)
+    for (const auto& p : material::find_effect(e.kind)->parameters)
+      if (p.polished_only) names += (names.empty() ? "" : ", ") + e.kind + " " + p.name;
+  return names;
+}
+
+/// The polish of one single (or of the base refit): refitted from its fit with the freedoms of `free_all`; under
+/// fit_polished_only, where its effect has polished_only parameters (mullins beta), continued from that polished fit
+/// with them free too, and that kept when its BIC is lower. The continuation starts where the polish ended, so it can only lower the chi2: freed
+/// together with the Prony times and exponents from the single's fit, beta took two Ogden-Roxburgh campaigns to worse
+/// minima than the polish with beta held (docs/physics.md 9.41).
+CandidateFit polish_single(const CandidateFit& f, const CandidateJobs& c, const DiagnoseOptions& free_all) {
+  CandidateFit p = refit_with_more_free(f, c.campaign, c.d.noise, c.d.residuals, c.d.baseline_bic, free_all, &c.spare);
+  if (!free_all.fit_polished_only || !p.converged || polished_only_names(p.effects).empty()) return p;
+  DiagnoseOptions more = free_all;
+  more.polishing = true;
+  CandidateFit q = refit_with_more_free(p, c.campaign, c.d.noise, c.d.residuals, c.d.baseline_bic, more, &c.spare);
+  if (q.converged && q.bic < p.bic) return q;
+  p.evaluations = q.evaluations;  // the continuation's runs and time count, kept or not
+  p.seconds = q.seconds;
+  return p;
+}
+
 /// Step 2b: the options.polished_singles best singles that beat the reference by strong_evidence (leaders) and, when
 /// there is a leader, the options.polished_challengers best near misses (challengers: above the reference's dBIC but
 /// not by strong_evidence beyond it) with the base refit beside them, each refitted from its own fit with every Prony
@@ -1367,18 +1395,17 @@ std::optional<CandidateFit> polish_leading_singles(const CandidateJobs& c, std::
   std::vector<double> expected_seconds;
   for (const CandidateFit* f : polish) {
     expected_seconds.push_back(f->seconds);
-    jobs.push_back([&c, f, free_all] {
-      return refit_with_more_free(*f, c.campaign, c.d.noise, c.d.residuals, c.d.baseline_bic, free_all, &c.spare);
-    });
+    jobs.push_back([&c, f, free_all] { return polish_single(*f, c, free_all); });
   }
   std::vector<CandidateFit> polished = run_all(jobs, o.threads, expected_seconds, &c.spare);
   for (std::size_t j = 0; j < polish.size(); ++j) {
     const CandidateFit& p = polished[j];
     const bool reference_job = j == singles.size();  // kept even when it failed
     const char* role = j < leaders.size() ? "" : reference_job ? " (the challengers' reference)" : " (challenger)";
-    log << "diagnose: " << polish[j]->name() << role << " polished (Prony times and hyperfoam exponents free): dBIC "
-        << fmt(polish[j]->delta_bic, 4) << " -> " << fmt(p.delta_bic, 4) << ", " << p.evaluations << " runs, "
-        << fmt(p.seconds, 2) << " s"
+    const std::string then = o.fit_polished_only ? polished_only_names(polish[j]->effects) : "";
+    log << "diagnose: " << polish[j]->name() << role << " polished (Prony times and hyperfoam exponents free"
+        << (then.empty() ? "" : ", then " + then + " too") << "): dBIC " << fmt(polish[j]->delta_bic, 4) << " -> "
+        << fmt(p.delta_bic, 4) << ", " << p.evaluations << " runs, " << fmt(p.seconds, 2) << " s"
         << (p.converged ? "" : (reference_job ? " (failed: " : " (failed, not kept: ") + p.message + ")") << "\n";
   }
   std::optional<CandidateFit> polished_reference;

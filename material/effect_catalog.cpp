@@ -99,7 +99,10 @@ const std::vector<Entry>& entries() {
         {{"r", "r: maximum softening 1/r", 2.0, 1.0, 1e3, true, true, true},
          {"m_kPa", "m: energy scale of the softening (kPa = kJ/m^3); unused with a strain_scale", 1.0, 0.0, 1e4, true,
           true, true, 0.0, "", std::nullopt, std::nullopt, "strain_scale"},
-         {"beta", "beta: growth of the energy scale with W_max", 0.1, 0.0, 10.0, false, false, false},
+         {"beta",
+          "beta: growth of the energy scale with W_max (diagnose: held, fitted after the polish with "
+          "--polish-mullins-beta)",
+          0.1, 0.0, 10.0, false, false, false, 0.0, "", std::nullopt, std::nullopt, "", "", true},
          {"relaxation_share",
           "w: share of the softening eta^w applied to the long-term stress that drives the Prony memory (the rest, "
           "eta^(1-w), scales the whole stress); 0: eta S_inner; > 0 only directly over the Prony memory (the first "

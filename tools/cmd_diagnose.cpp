@@ -104,6 +104,11 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
              std::to_string(cushion::calibration::DiagnoseOptions{}.polished_singles) +
              "; 0: off; support is still judged against the base refit without them)")
       ->check(CLI::Range(0, 5));
+  sub->add_flag(
+      "--polish-mullins-beta", opt->options.fit_polished_only,
+      "after the polish, fit a polished Mullins single once more from there with its beta free too (held at "
+      "0.1 otherwise; off by default: on three benchmark sets it brought three form-matched Mullins campaigns "
+      "from 3.1-3.7x to 1.1-1.4x noise and cost three Mullins pairs, docs/physics.md 9.41)");
   sub->add_option(
          "--polish-challengers", opt->options.polished_challengers,
          "when a single is supported, polish also the N best near misses (singles above the base refit's "

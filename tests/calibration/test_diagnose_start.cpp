@@ -467,6 +467,28 @@ TEST(DiagnoseStart, SecantDampingIsNamedStiffnessDampingOnTheNominalTangent) {
   fs::remove_all(c.set);
 }
 
+// Mullins' beta (the growth of the Ogden-Roxburgh energy scale m + beta W_max), held at 0.1 by the single fits, fitted
+// after the polish from the polished single with `--polish-mullins-beta` (DiagnoseOptions::fit_polished_only, catalogue
+// polished_only; docs/physics.md 9.41). Scale-set c043: Ogden-Roxburgh softening (r 1.78, m 0.50 kPa, beta 0.214) on a
+// soft 50 kg/m3 foam. With beta held the polished Mullins single leaves dyn_25 at 4.99x and qs_12 at 3.21x noise
+// (2026-12-06 benchmark; checked 2026-12-07 with the continuation switched off: this test then fails on both counts);
+// with it every test is within 1.1x noise and r, m, beta are within 2 % of the truth's (measured 2026-12-07: 1.787,
+// 0.497 kPa, 0.212).
+TEST(DiagnoseStart, OgdenRoxburghBetaIsFittedAfterThePolish) {
+  const BenchCampaign c = bench_campaign("diagnose_mullins_beta", "c043", "--base-refit scale");
+  ASSERT_EQ(c.truth.at("forms").at(0).get<std::string>(), "ogden_roxburgh") << "the generator's mix changed";
+  const nlohmann::json& truth = c.truth.at("parameters").at("mullins");
+
+  const nlohmann::json d = cushion::foreign_program::diagnose_raw(c.dir, "--candidates mullins --polish-mullins-beta");
+  ASSERT_EQ(d.at("winner"), "mullins") << d.at("verdict");
+  for (const auto& t : d.at("candidates").at(0).at("compare").at("tests"))
+    EXPECT_LT(t.at("error_over_noise").get<double>(), 1.5) << t.at("name");
+  const nlohmann::json& mullins = d.at("fragment").at("effects").at(0);
+  for (const char* key : {"r", "m_kPa", "beta"})  // 10 %: a tolerance on the fit, the measured misfit is under 2 %
+    EXPECT_NEAR(mullins.value(key, 0.0), truth.at(key).get<double>(), 0.1 * truth.at(key).get<double>()) << key;
+  fs::remove_all(c.set);
+}
+
 // A pair must explain DiagnoseOptions::pair_share (25 %) of the chi2 its best single leaves (docs/physics.md 9.13).
 // Scale-set c041: Bouc-Wen friction on a soft 50 kg/m3 foam, a single effect. Friction + Mullins beats friction alone by
 // dBIC 17 (the 2026-12-01 benchmark, all candidates) but explains 13 % of the chi2 friction leaves: friction alone is

@@ -70,6 +70,7 @@ TEST(EffectCatalog, EveryEntryIsSelfDescribing) {
         EXPECT_LE(*p.diagnose_value, p.max) << p.name;
         EXPECT_NE(*p.diagnose_value, p.default_value) << p.name;
       }
+      if (p.polished_only) EXPECT_FALSE(p.fit) << p.name;  // held by the singles, fitted in the polish only
       if (!p.scan_with.empty()) {  // a fitted partner of the same effect, not the parameter itself
         EXPECT_TRUE(p.fit) << p.name;
         EXPECT_NE(p.scan_with, p.name);
