@@ -1610,6 +1610,19 @@ std::string wider_polish_sentence(const DiagnoseOptions& options, const Candidat
   return o.str();
 }
 
+/// The follow-up for a polished winner left beyond noise whose first effect (the polished single's) holds a
+/// polished_only parameter at its default (mullins beta) because options.fit_polished_only is off; empty otherwise
+/// (docs/physics.md 9.41).
+std::string polished_only_sentence(const DiagnoseOptions& options, const CandidateFit& w) {
+  const std::string names = w.effects.empty() ? "" : polished_only_names({w.effects.front()});
+  if (options.fit_polished_only || w.polish_added == 0 || names.empty()) return "";
+  std::string kinds;
+  for (const auto& k : w.kinds) kinds += (kinds.empty() ? "" : ",") + k;
+  return " It held " + names + " at its default: `--candidates " + kinds +
+         " --polish-mullins-beta` fits it after the polish (better Mullins fits where cushion's form matches, fewer "
+         "Mullins pairs; docs/physics.md 9.41).";
+}
+
 /// Verdict with a supported winner (candidates.front()): add it, its fragment, the extended material, and
 /// the tests still beyond noise.
 void winner_verdict(const material::MaterialSpec& baseline, const DiagnoseOptions& options, Diagnosis& d) {
@@ -1634,7 +1647,7 @@ void winner_verdict(const material::MaterialSpec& baseline, const DiagnoseOption
     o << ": the effect's form in cushion may not follow the data's (its family can be right while the measured effect "
          "has another functional form, e.g. an air flow whose resistance is a power of the rate), the base calibration is "
          "off there, or a further effect outside the catalogue is missing (rerun `cushion fit`, then diagnose again).";
-    o << wider_polish_sentence(options, w);
+    o << wider_polish_sentence(options, w) << polished_only_sentence(options, w);
   }
   d.verdict = o.str();
 }

@@ -394,6 +394,8 @@ TEST(DiagnoseStart, ExponentialDamageFarBeyondTheNoiseIsNamedMullinsFromItsDamag
   const std::size_t from = verdict.find("--candidates mullins"), to = verdict.find(tail, from);
   ASSERT_TRUE(from != std::string::npos && to != std::string::npos) << verdict;
   const std::string follow_up = verdict.substr(from, to - from) + tail;
+  // and, after it, the Mullins beta held at 0.1 (docs/physics.md 9.41)
+  EXPECT_NE(verdict.find("--polish-mullins-beta", to), std::string::npos) << verdict;
 
   const nlohmann::json wide = cushion::foreign_program::diagnose_raw(c.dir, follow_up, "diag_wide");
   ASSERT_EQ(wide.at("winner").get<std::string>(), "mullins") << wide.at("verdict");
