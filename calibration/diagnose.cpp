@@ -1342,9 +1342,9 @@ std::string polished_only_names(const std::vector<material::EffectSpec>& effects
 
 /// The polish of one single (or of the base refit): refitted from its fit with the freedoms of `free_all`; under
 /// fit_polished_only, where its effect has polished_only parameters (mullins beta), continued from that polished fit
-/// with them free too, and that kept when its BIC is lower. The continuation starts where the polish ended, so it can only lower the chi2: freed
-/// together with the Prony times and exponents from the single's fit, beta took two Ogden-Roxburgh campaigns to worse
-/// minima than the polish with beta held (docs/physics.md 9.41).
+/// with them free too, and that kept when its BIC is lower. The continuation starts where the polish ended, so it can
+/// only lower the chi2: freed together with the Prony times and exponents from the single's fit, beta took two
+/// Ogden-Roxburgh campaigns to worse minima than the polish with beta held (docs/physics.md 9.41).
 CandidateFit polish_single(const CandidateFit& f, const CandidateJobs& c, const DiagnoseOptions& free_all) {
   CandidateFit p = refit_with_more_free(f, c.campaign, c.d.noise, c.d.residuals, c.d.baseline_bic, free_all, &c.spare);
   if (!free_all.fit_polished_only || !p.converged || polished_only_names(p.effects).empty()) return p;
@@ -1591,6 +1591,13 @@ nlohmann::json effects_fragment(const material::MaterialSpec& baseline, const Ca
   return fragment;
 }
 
+/// The winner's kinds as `--candidates` takes them, comma-separated.
+std::string candidates_option(const CandidateFit& w) {
+  std::string kinds;
+  for (const auto& k : w.kinds) kinds += (kinds.empty() ? "" : ",") + k;
+  return kinds;
+}
+
 /// The follow-up for a polished winner left beyond noise while the polish kept the base's Prony times and exponents
 /// within narrower bounds (DiagnoseOptions::polish_bounds) than follow_up_polish_bounds; empty otherwise.
 std::string wider_polish_sentence(const DiagnoseOptions& options, const CandidateFit& w) {
@@ -1598,8 +1605,7 @@ std::string wider_polish_sentence(const DiagnoseOptions& options, const Candidat
   const BaseFactorBounds& wide = follow_up_polish_bounds;
   if (w.polish_added == 0 || (now.time_decades >= wide.time_decades && now.exponent_decades >= wide.exponent_decades))
     return "";
-  std::string kinds;
-  for (const auto& k : w.kinds) kinds += (kinds.empty() ? "" : ",") + k;
+  const std::string kinds = candidates_option(w);
   std::ostringstream o;
   o << " The polish moved the base's Prony times by at most a factor " << fmt(std::pow(10.0, now.time_decades), 3)
     << " and its hyperfoam exponents by " << fmt(std::pow(10.0, now.exponent_decades), 3)
@@ -1616,8 +1622,7 @@ std::string wider_polish_sentence(const DiagnoseOptions& options, const Candidat
 std::string polished_only_sentence(const DiagnoseOptions& options, const CandidateFit& w) {
   const std::string names = w.effects.empty() ? "" : polished_only_names({w.effects.front()});
   if (options.fit_polished_only || w.polish_added == 0 || names.empty()) return "";
-  std::string kinds;
-  for (const auto& k : w.kinds) kinds += (kinds.empty() ? "" : ",") + k;
+  const std::string kinds = candidates_option(w);
   return " It held " + names + " at its default: `--candidates " + kinds +
          " --polish-mullins-beta` fits it after the polish (better Mullins fits where cushion's form matches, fewer "
          "Mullins pairs; docs/physics.md 9.41).";
