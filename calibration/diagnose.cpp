@@ -1140,17 +1140,27 @@ std::vector<std::size_t> best_first(const std::vector<CandidateFit>& fits) {
   return order;
 }
 
+/// The best single's continuation (fit_polished_only): `fit`, the single `single` (index into the singles) fitted once
+/// more from its polished fit with its polished_only parameters free too.
+struct Continuation {
+  std::size_t single = 0;
+  CandidateFit fit;
+};
+
 /// The singles to combine in pairs, best dBIC first: the `pairs_from` best converged ones with dBIC > strong_evidence,
 /// none when the best single already brings every test to the noise level (nothing left for a second effect). A single
 /// that explains nothing on its own (dBIC 0 to 10) was never part of a right pair: bench seed 2025, three such pairs of
 /// 60 campaigns, 5-12 s each, none right. One that explains less alone than two others may still be the second
 /// family: seed c001 (Qi-Boyce-like Mullins + exponential strain-dependent Prony), strain-dependent Prony 4th at dBIC 31.7
-/// (docs/physics.md 9.15).
-std::vector<std::size_t> pair_sources(const std::vector<CandidateFit>& fits, const DiagnoseOptions& options) {
+/// (docs/physics.md 9.15). The best single's continuation (fit_polished_only) at the noise level counts as well.
+std::vector<std::size_t> pair_sources(const std::vector<CandidateFit>& fits, const std::optional<Continuation>& more,
+                                      const DiagnoseOptions& options) {
   const std::vector<std::size_t> order = best_first(fits);
   std::vector<std::size_t> top;
-  const bool single_enough = !order.empty() && fits[order.front()].converged &&
-                             fits[order.front()].compare.at_noise_level(options.compare.noise_level_ratio);
+  auto at_noise = [&](const CandidateFit& f) {
+    return f.converged && f.compare.at_noise_level(options.compare.noise_level_ratio);
+  };
+  const bool single_enough = !order.empty() && (at_noise(fits[order.front()]) || (more && at_noise(more->fit)));
   if (!single_enough)
     for (std::size_t i : order)
       if (fits[i].converged && fits[i].delta_bic > options.strong_evidence &&
@@ -1340,21 +1350,59 @@ std::string polished_only_names(const std::vector<material::EffectSpec>& effects
   return names;
 }
 
-/// The polish of one single (or of the base refit): refitted from its fit with the freedoms of `free_all`; under
-/// fit_polished_only, where its effect has polished_only parameters (mullins beta), continued from that polished fit
-/// with them free too, and that kept when its BIC is lower. The continuation starts where the polish ended, so it can
-/// only lower the chi2: freed together with the Prony times and exponents from the single's fit, beta took two
-/// Ogden-Roxburgh campaigns to worse minima than the polish with beta held (docs/physics.md 9.41).
+/// The freedoms of the polish (step 2b): `o` with every Prony time and hyperfoam exponent free too, within
+/// o.polish_bounds.
+DiagnoseOptions polish_freedoms(const DiagnoseOptions& o) {
+  DiagnoseOptions free_all = o;
+  free_all.base_times = free_all.base_exponents = true;
+  free_all.base_bounds = o.polish_bounds;
+  return free_all;
+}
+
+/// The polish of one single (or of the base refit): refitted from its fit with the freedoms of `free_all`.
 CandidateFit polish_single(const CandidateFit& f, const CandidateJobs& c, const DiagnoseOptions& free_all) {
-  CandidateFit p = refit_with_more_free(f, c.campaign, c.d.noise, c.d.residuals, c.d.baseline_bic, free_all, &c.spare);
-  if (!free_all.fit_polished_only || !p.converged || polished_only_names(p.effects).empty()) return p;
-  DiagnoseOptions more = free_all;
+  return refit_with_more_free(f, c.campaign, c.d.noise, c.d.residuals, c.d.baseline_bic, free_all, &c.spare);
+}
+
+/// Step 2b, continued (DiagnoseOptions::fit_polished_only): the best single after the polish, when it was polished and
+/// its effect has polished_only parameters (mullins beta), fitted once more from its polished fit with them free too;
+/// returned when its BIC is lower (the pairs still start from and are judged against the polished fit:
+/// rank_candidates). The continuation starts where the polish ended, so it can only lower the chi2: freed together
+/// with the Prony times and exponents from the single's fit, beta took two Ogden-Roxburgh campaigns to worse minima
+/// than the polish with beta held (docs/physics.md 9.41). Only the best single: it refines the family the singles
+/// rank first and does not re-rank the families, since a freedom only one family gets tips near ties (the in-repository
+/// Bouc-Wen friction: Mullins polished 3138, with beta 3353, past friction's 3292; docs/physics.md 9.42).
+std::optional<Continuation> continue_best_single(const CandidateJobs& c, std::vector<CandidateFit>& fits,
+                                                 std::ostream& log) {
+  const DiagnoseOptions& o = c.options;
+  const std::vector<std::size_t> order = best_first(fits);
+  if (!o.fit_polished_only || order.empty()) return std::nullopt;
+  CandidateFit& best = fits[order.front()];
+  const std::string names = polished_only_names(best.effects);
+  if (!best.converged || !best.polished || names.empty()) return std::nullopt;
+  DiagnoseOptions more = polish_freedoms(o);
   more.polishing = true;
-  CandidateFit q = refit_with_more_free(p, c.campaign, c.d.noise, c.d.residuals, c.d.baseline_bic, more, &c.spare);
-  if (q.converged && q.bic < p.bic) return q;
-  p.evaluations = q.evaluations;  // the continuation's runs and time count, kept or not
-  p.seconds = q.seconds;
-  return p;
+  const std::vector<std::function<CandidateFit()>> job{[&c, &best, more] {
+    return refit_with_more_free(best, c.campaign, c.d.noise, c.d.residuals, c.d.baseline_bic, more, &c.spare);
+  }};
+  CandidateFit q = run_all(job, o.threads, {}, &c.spare).front();
+  const int runs = q.evaluations - best.evaluations;
+  const double seconds = q.seconds - best.seconds;
+  const bool kept = q.converged && q.bic < best.bic;
+  log << "diagnose: " << best.name() << " continued from its polish with " << names << " free too: dBIC "
+      << fmt(best.delta_bic, 4) << " -> " << fmt(q.delta_bic, 4) << ", " << runs << " runs, " << fmt(seconds, 2) << " s"
+      << (kept          ? " (ranks the single; its pairs start from the polish)"
+          : q.converged ? " (not kept: no lower BIC)"
+                        : " (failed, not kept: " + q.message + ")")
+      << "\n";
+  best.evaluations = q.evaluations;  // the continuation's runs and time count, kept or not
+  best.seconds = q.seconds;
+  if (!kept) return std::nullopt;
+  q.polished = true;
+  q.challenger = best.challenger;
+  q.polish_added = best.polish_added + (q.parameters - best.parameters);
+  q.delta_bic_unpolished = best.delta_bic_unpolished;
+  return Continuation{order.front(), std::move(q)};
 }
 
 /// Step 2b: the options.polished_singles best singles that beat the reference by strong_evidence (leaders) and, when
@@ -1383,9 +1431,7 @@ std::optional<CandidateFit> polish_leading_singles(const CandidateJobs& c, std::
     }
   }
   if (leaders.empty()) challengers.clear();
-  DiagnoseOptions free_all = o;
-  free_all.base_times = free_all.base_exponents = true;
-  free_all.base_bounds = o.polish_bounds;
+  const DiagnoseOptions free_all = polish_freedoms(o);
   std::vector<std::size_t> singles = leaders;  // the singles to polish: the leaders, then the challengers
   singles.insert(singles.end(), challengers.begin(), challengers.end());
   std::vector<const CandidateFit*> polish;  // their fits, then the base refit when there are challengers
@@ -1402,10 +1448,9 @@ std::optional<CandidateFit> polish_leading_singles(const CandidateJobs& c, std::
     const CandidateFit& p = polished[j];
     const bool reference_job = j == singles.size();  // kept even when it failed
     const char* role = j < leaders.size() ? "" : reference_job ? " (the challengers' reference)" : " (challenger)";
-    const std::string then = o.fit_polished_only ? polished_only_names(polish[j]->effects) : "";
-    log << "diagnose: " << polish[j]->name() << role << " polished (Prony times and hyperfoam exponents free"
-        << (then.empty() ? "" : ", then " + then + " too") << "): dBIC " << fmt(polish[j]->delta_bic, 4) << " -> "
-        << fmt(p.delta_bic, 4) << ", " << p.evaluations << " runs, " << fmt(p.seconds, 2) << " s"
+    log << "diagnose: " << polish[j]->name() << role << " polished (Prony times and hyperfoam exponents free): dBIC "
+        << fmt(polish[j]->delta_bic, 4) << " -> " << fmt(p.delta_bic, 4) << ", " << p.evaluations << " runs, "
+        << fmt(p.seconds, 2) << " s"
         << (p.converged ? "" : (reference_job ? " (failed: " : " (failed, not kept: ") + p.message + ")") << "\n";
   }
   std::optional<CandidateFit> polished_reference;
@@ -1429,13 +1474,13 @@ std::optional<CandidateFit> polish_leading_singles(const CandidateJobs& c, std::
 /// Ranking: a single is supported when it beats the reference by strong_evidence, a pair when it beats the
 /// best single and the reference by strong_evidence and explains pair_share of the chi2 the best single leaves, none
 /// when the reference alone brings every test to the noise level; supported first, then by dBIC; warnings for failed or
-/// unconverged candidates.
-void rank_candidates(std::vector<CandidateFit> fits, std::vector<CandidateFit> pairs, const std::vector<std::size_t>& top,
+/// unconverged candidates. The pairs are judged against the best single they started from (its polish); the single is
+/// then ranked by its continuation (`more`, fit_polished_only) where there is one.
+void rank_candidates(std::vector<CandidateFit> fits, std::vector<CandidateFit> pairs,
+                     const std::vector<std::size_t>& top, std::optional<Continuation> more,
                      const DiagnoseOptions& options, Diagnosis& d) {
   const double gain = support_gain(d, options);
   const double margin = support_margin(d, options);  // infinite: nothing is supported
-  for (auto& f : fits)
-    f.supported = f.converged && f.support_delta_bic() > (f.challenger ? polished_base_gain(d) : gain) + margin;
   const double best_single = top.empty() ? 0.0 : fits[top.front()].delta_bic;
   for (auto& f : pairs) {
     f.supported = f.converged && f.delta_bic > std::max(best_single, gain) + margin;
@@ -1447,6 +1492,9 @@ void rank_candidates(std::vector<CandidateFit> fits, std::vector<CandidateFit> p
                        " %";
     }
   }
+  if (more) fits[more->single] = std::move(more->fit);
+  for (auto& f : fits)
+    f.supported = f.converged && f.support_delta_bic() > (f.challenger ? polished_base_gain(d) : gain) + margin;
   for (auto& f : fits) d.candidates.push_back(std::move(f));
   for (auto& f : pairs) d.candidates.push_back(std::move(f));
   for (const auto& f : d.candidates)
@@ -1617,15 +1665,15 @@ std::string wider_polish_sentence(const DiagnoseOptions& options, const Candidat
 }
 
 /// The follow-up for a polished winner left beyond noise whose first effect (the polished single's) holds a
-/// polished_only parameter at its default (mullins beta) because options.fit_polished_only is off; empty otherwise
+/// polished_only parameter at its default (mullins beta) because options.fit_polished_only is off
+/// (`--no-polish-mullins-beta`); empty otherwise
 /// (docs/physics.md 9.41).
 std::string polished_only_sentence(const DiagnoseOptions& options, const CandidateFit& w) {
   const std::string names = w.effects.empty() ? "" : polished_only_names({w.effects.front()});
   if (options.fit_polished_only || w.polish_added == 0 || names.empty()) return "";
   const std::string kinds = candidates_option(w);
-  return " It held " + names + " at its default: `--candidates " + kinds +
-         " --polish-mullins-beta` fits it after the polish (better Mullins fits where cushion's form matches, fewer "
-         "Mullins pairs; docs/physics.md 9.41).";
+  return " It held " + names + " at its default (`--no-polish-mullins-beta`): `--candidates " + kinds +
+         " --polish-mullins-beta` fits it after the polish (docs/physics.md 9.41-9.42).";
 }
 
 /// Verdict with a supported winner (candidates.front()): add it, its fragment, the extended material, and
@@ -1837,9 +1885,10 @@ Diagnosis diagnose(const material::MaterialSpec& baseline, const Campaign& campa
     std::vector<CandidateFit> singles =
         fit_singles_and_reference(jobs, single_candidates(baseline, options, d.warnings), d, log);
     d.polished_base_refit = polish_leading_singles(jobs, singles, log);
-    const std::vector<std::size_t> top = pair_sources(singles, options);
+    std::optional<Continuation> more = continue_best_single(jobs, singles, log);
+    const std::vector<std::size_t> top = pair_sources(singles, more, options);
     std::vector<CandidateFit> pairs = fit_pairs(jobs, singles, top, log);
-    rank_candidates(std::move(singles), std::move(pairs), top, options, d);
+    rank_candidates(std::move(singles), std::move(pairs), top, std::move(more), options, d);
     confirm_out_of_sample(jobs, d, log);
     if (!d.candidates.empty() && d.candidates.front().supported) {
       winner_verdict(baseline, options, d);

@@ -33,14 +33,16 @@
 ///  2b. Polish (options.polished_singles, joint only): the best singles that beat the reference are refitted from their
 ///     own fit with the base's Prony times and hyperfoam exponents free too (within options.polish_bounds), and ranked
 ///     by that fit's BIC (the added parameters counted); support (step 4) is still judged by the fit before the polish
-///     against the reference. With options.fit_polished_only, a single whose effect has polished_only parameters
-///     (material/effect_catalog.hpp: mullins beta) is polished once more from there with them free too, and that fit
-///     kept when its BIC is lower.
+///     against the reference. With options.fit_polished_only (default), the best single after the polish, when its
+///     effect has polished_only parameters (material/effect_catalog.hpp: mullins beta), is fitted once more from its
+///     polished fit with them free too, and that fit ranks the single when its BIC is lower; the pairs (step 3) start
+///     from the polish before and are judged against it; at the noise level, it leaves no room for a pair.
 ///     With options.polished_challengers (off by default), when one is, the best near misses (above the reference's
 ///     dBIC, not by strong_evidence) are polished too (challengers), each judged by its polished fit against the
 ///     reference polished alike.
-///  3. Pairs (only when the best single leaves some test beyond noise): the best single combined with each of the
-///     next `pairs_from` - 1, started from their single fits (the best single's base), the start scan over the added
+///  3. Pairs (only when the best single, and its continuation, leave some test beyond noise): the best single
+///     combined with each of the next `pairs_from` - 1, started from their single fits (the best single's base; its
+///     polish, beta held, when it was polished), the start scan over the added
 ///     effect's parameters only (the best single's effect held at its fit); a joint pair whose second effect the scan
 ///     left switched off (explaining less than pair_stop_share of the chi2 the best single leaves) is fitted again from
 ///     the plain sum without a scan, the lower BIC kept (docs/physics.md 9.19, 9.37); a pair started from a polished
@@ -191,15 +193,16 @@ struct DiagnoseOptions {
   /// 1.5x went 26/32 -> 27/32 (docs/physics.md 9.35). So the wider bounds are the follow-up the verdict proposes when
   /// its polished winner leaves a test beyond noise (`--candidates WINNER --polish-bounds 1,0.5`).
   BaseFactorBounds polish_bounds;
-  /// Step 2b: a polished single whose effect has polished_only parameters (material/effect_catalog.hpp: mullins beta,
-  /// held at 0.1 otherwise) is fitted once more from its polished fit with them free too, and that fit kept when its BIC
-  /// is lower (`--polish-mullins-beta`). Off by default. Measured on three benchmark sets (docs/physics.md 9.41):
-  /// every test within 1.5x noise after the named effect on 51 of 57 form-matched campaigns against 49 (seed-2027 c004
-  /// 3.31 -> 1.07x, c017 3.07 -> 1.41x, scale c043 3.68 -> 1.09x, beta within 0.015 of the truth's on six
-  /// Ogden-Roxburgh singles), the same singles and controls, but pairs 10/30 against 12/30 (once Mullins with its beta
-  /// explains more alone, its partner's share falls and a Mullins pair is lost) and 1.4-3.6 s more on a Mullins
-  /// campaign.
-  bool fit_polished_only = false;
+  /// Step 2b, continued: the best single after the polish, when its effect has polished_only parameters
+  /// (material/effect_catalog.hpp: mullins beta, held at 0.1 otherwise), is fitted once more from its polished fit with
+  /// them free too, and that fit ranks the single when its BIC is lower; the pairs start from the polish with beta held
+  /// and are judged against it (`--no-polish-mullins-beta`: off). Only the best single: the continuation refines the
+  /// family the singles rank first and does not re-rank the families (docs/physics.md 9.42). Measured on three
+  /// benchmark sets against it off: the same singles (106/120), pairs (12/30) and controls (30/30); every test within
+  /// 1.5x noise after the named effect on 52 of 57 form-matched campaigns against 49 (seed-2027 c004 3.31 -> 1.07x,
+  /// c017 3.07 -> 1.41x, scale c043 3.68 -> 1.09x). Continuing every polished Mullins single and starting the pairs
+  /// from it (9.41) had lost two Mullins pairs and named Mullins on a Bouc-Wen friction.
+  bool fit_polished_only = true;
   /// Set for the continuation above, not by users: the polished_only parameters are fitted too.
   bool polishing = false;
   /// Step 2b, challengers: when some single is polished as a leader (an effect is evidently missing and the question

@@ -100,8 +100,8 @@ const std::vector<Entry>& entries() {
          {"m_kPa", "m: energy scale of the softening (kPa = kJ/m^3); unused with a strain_scale", 1.0, 0.0, 1e4, true,
           true, true, 0.0, "", std::nullopt, std::nullopt, "strain_scale"},
          {"beta",
-          "beta: growth of the energy scale with W_max (diagnose: held, fitted after the polish with "
-          "--polish-mullins-beta)",
+          "beta: growth of the energy scale with W_max (diagnose: held in the ranking, fitted after the polish of "
+          "the best single when that is Mullins)",
           0.1, 0.0, 10.0, false, false, false, 0.0, "", std::nullopt, std::nullopt, "", "", true},
          {"relaxation_share",
           "w: share of the softening eta^w applied to the long-term stress that drives the Prony memory (the rest, "

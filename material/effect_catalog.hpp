@@ -71,10 +71,10 @@ struct EffectParameterInfo {
   /// modulus exponent is meaningless in the dashpot, trapped-air modulus 0; docs/physics.md 5.1).
   std::string fitted_only_with{};
   /// Held by diagnose's single and pair fits (at the value given, else the default) and fitted only after the polish of
-  /// a leading single, from its polished fit, when diagnose is asked to (DiagnoseOptions::fit_polished_only, step 2b of
+  /// the best single, from its polished fit (DiagnoseOptions::fit_polished_only, on by default; step 2b of
   /// calibration/diagnose.hpp): a shape parameter that a fit from the start scan takes somewhere wrong when the base
   /// `cushion fit` placed is off, but that a fit from the effect's own polished single moves to where the data want it
-  /// (mullins beta, docs/physics.md 9.41). Only with fit false.
+  /// (mullins beta, docs/physics.md 9.41-9.42). Only with fit false.
   bool polished_only = false;
 };
 

@@ -105,10 +105,10 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
              "; 0: off; support is still judged against the base refit without them)")
       ->check(CLI::Range(0, 5));
   sub->add_flag(
-      "--polish-mullins-beta", opt->options.fit_polished_only,
-      "after the polish, fit a polished Mullins single once more from there with its beta free too (held at "
-      "0.1 otherwise; off by default: on three benchmark sets it brought three form-matched Mullins campaigns "
-      "from 3.1-3.7x to 1.1-1.4x noise and cost three Mullins pairs, docs/physics.md 9.41)");
+      "--polish-mullins-beta,!--no-polish-mullins-beta", opt->options.fit_polished_only,
+      "after the polish, when the best single is Mullins, fit it once more from there with its beta free too and "
+      "rank the single by that fit; the pairs start from the polish with beta held at 0.1 (on by default; "
+      "--no-polish-mullins-beta holds beta at 0.1 throughout, docs/physics.md 9.41-9.42)");
   sub->add_option(
          "--polish-challengers", opt->options.polished_challengers,
          "when a single is supported, polish also the N best near misses (singles above the base refit's "
