@@ -1382,9 +1382,7 @@ std::optional<Continuation> continue_best_single(const CandidateJobs& c, std::ve
   if (!best.converged || !best.polished || names.empty()) return std::nullopt;
   DiagnoseOptions more = polish_freedoms(o);
   more.polishing = true;
-  const std::vector<std::function<CandidateFit()>> job{[&c, &best, more] {
-    return refit_with_more_free(best, c.campaign, c.d.noise, c.d.residuals, c.d.baseline_bic, more, &c.spare);
-  }};
+  const std::vector<std::function<CandidateFit()>> job{[&c, &best, more] { return polish_single(best, c, more); }};
   CandidateFit q = run_all(job, o.threads, {}, &c.spare).front();
   const int runs = q.evaluations - best.evaluations;
   const double seconds = q.seconds - best.seconds;
@@ -1666,8 +1664,7 @@ std::string wider_polish_sentence(const DiagnoseOptions& options, const Candidat
 
 /// The follow-up for a polished winner left beyond noise whose first effect (the polished single's) holds a
 /// polished_only parameter at its default (mullins beta) because options.fit_polished_only is off
-/// (`--no-polish-mullins-beta`); empty otherwise
-/// (docs/physics.md 9.41).
+/// (`--no-polish-mullins-beta`); empty otherwise (docs/physics.md 9.41).
 std::string polished_only_sentence(const DiagnoseOptions& options, const CandidateFit& w) {
   const std::string names = w.effects.empty() ? "" : polished_only_names({w.effects.front()});
   if (options.fit_polished_only || w.polish_added == 0 || names.empty()) return "";

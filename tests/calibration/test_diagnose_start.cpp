@@ -482,8 +482,8 @@ TEST(DiagnoseStart, SecantDampingIsNamedStiffnessDampingOnTheNominalTangent) {
 
 // Mullins' beta (the growth of the Ogden-Roxburgh energy scale m + beta W_max), held at 0.1 by the single fits, fitted
 // after the polish from the best polished single (DiagnoseOptions::fit_polished_only, on by default; catalogue
-// polished_only; docs/physics.md 9.41-9.42). Scale-set c043: Ogden-Roxburgh softening (r 1.78, m 0.50 kPa, beta 0.214) on a
-// soft 50 kg/m3 foam. With beta held the polished Mullins single leaves dyn_25 at 4.99x and qs_12 at 3.21x noise
+// polished_only; docs/physics.md 9.41-9.42). Scale-set c043: Ogden-Roxburgh softening (r 1.78, m 0.50 kPa, beta
+// 0.214) on a soft 50 kg/m3 foam. With beta held the polished Mullins single leaves dyn_25 at 4.99x and qs_12 at 3.21x noise
 // (2026-12-06 benchmark; checked 2026-12-07 with `--no-polish-mullins-beta`: this test then fails on both counts);
 // with it every test is within 1.1x noise and r, m, beta are within 2 % of the truth's (measured 2026-12-07: 1.787,
 // 0.497 kPa, 0.212).
