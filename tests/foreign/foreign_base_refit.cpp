@@ -43,21 +43,39 @@ BaseFoam unpack(const BaseFoam& like, const Eigen::VectorXd& theta) {
 
 /// An exponent that keeps the sign and the distance from 0 (0.2) of the start's: the term stays the plateau,
 /// densification or extra term it was (alpha -> 0 is singular in the energy).
-bool admissible(const Eigen::VectorXd& theta, const Eigen::VectorXd& start, std::size_t terms) {
+/// A kept effect's magnitude stays within 3 decades of its start.
+bool admissible(const Eigen::VectorXd& theta, const Eigen::VectorXd& start, std::size_t terms, Eigen::Index kept_from) {
   for (std::size_t i = terms; i < 2 * terms; ++i) {
     const auto k = static_cast<Eigen::Index>(i);
     if (theta[k] * start[k] <= 0.0 || std::abs(theta[k]) < 0.2 || std::abs(theta[k]) > 40.0) return false;
   }
+  for (Eigen::Index k = kept_from; k < theta.size(); ++k)
+    if (std::abs(theta[k]) > 3.0 * std::log(10.0)) return false;
   return theta.allFinite();
+}
+
+/// The effects of `kept` with their magnitudes times exp(theta_k) for the entries after the base's.
+std::vector<EffectSpec> scaled_effects(const std::vector<EffectSpec>& kept, const BaseFoam& like,
+                                       const Eigen::VectorXd& theta) {
+  std::vector<EffectSpec> out = kept;
+  const auto first = static_cast<Eigen::Index>(2 * like.hyperfoam.size() + 2 * like.prony.size());
+  for (std::size_t k = 0; k < out.size(); ++k)
+    out[k].parameters[find_form(out[k].family, out[k].form).magnitude] *=
+        std::exp(theta[first + static_cast<Eigen::Index>(k)]);
+  return out;
 }
 
 struct Problem {
   const BaseFoam& like;
   const PlanRecords& data;
   const TestPlan& plan;
+  const std::vector<EffectSpec>& kept;
 
+  PlanRecords model(const Eigen::VectorXd& theta) const {
+    return simulate_noise_free(unpack(like, theta), scaled_effects(kept, like, theta), plan);
+  }
   Eigen::VectorXd residuals(const Eigen::VectorXd& theta) const {
-    return normalised_differences(simulate_noise_free(unpack(like, theta), {}, plan), data, plan);
+    return normalised_differences(model(theta), data, plan);
   }
   /// Forward differences, columns shared among the hardware threads (each run builds its own records).
   Eigen::MatrixXd jacobian(const Eigen::VectorXd& theta, const Eigen::VectorXd& r0) const {
@@ -82,11 +100,13 @@ struct Problem {
 }  // namespace
 
 BaseRefit refit_base(const BaseFoam& truth_base, const std::vector<EffectSpec>& effects, const TestPlan& plan,
-                     const BaseFoam* start, int max_iterations) {
+                     const BaseFoam* start, int max_iterations, const std::vector<EffectSpec>& kept) {
   const PlanRecords data = simulate_noise_free(truth_base, effects, plan);
   const BaseFoam& from = start ? *start : truth_base;
-  const Eigen::VectorXd theta0 = pack(from);
-  const Problem problem{from, data, plan};
+  const Eigen::VectorXd base0 = pack(from);
+  Eigen::VectorXd theta0 = Eigen::VectorXd::Zero(base0.size() + static_cast<Eigen::Index>(kept.size()));
+  theta0.head(base0.size()) = base0;
+  const Problem problem{from, data, plan, kept};
   Eigen::VectorXd theta = theta0, r = problem.residuals(theta);
   double cost = r.squaredNorm(), lambda = 1e-3;
   BaseRefit out;
@@ -106,7 +126,7 @@ BaseRefit refit_base(const BaseFoam& truth_base, const std::vector<EffectSpec>& 
       M.diagonal() += lambda * scale;
       const Eigen::VectorXd step = M.ldlt().solve(-g);
       const Eigen::VectorXd candidate = theta + step;
-      if (admissible(candidate, theta0, from.hyperfoam.size())) {
+      if (admissible(candidate, theta0, from.hyperfoam.size(), base0.size())) {
         const Eigen::VectorXd rc = problem.residuals(candidate);
         if (rc.allFinite() && rc.squaredNorm() < cost) {
           theta = candidate, r = rc, new_cost = rc.squaredNorm(), accepted = true;
@@ -122,8 +142,9 @@ BaseRefit refit_base(const BaseFoam& truth_base, const std::vector<EffectSpec>& 
     if (stalled || cost < 1e-12) break;
   }
   out.base = unpack(from, theta);
+  out.kept = scaled_effects(kept, from, theta);
   out.chi2_after = cost;
-  out.ratio_after = ratios_between(simulate_noise_free(out.base, {}, plan), data, plan);
+  out.ratio_after = ratios_between(problem.model(theta), data, plan);
   out.iterations = iteration;
   return out;
 }

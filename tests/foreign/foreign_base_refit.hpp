@@ -20,6 +20,7 @@ namespace foreign_bench {
 
 struct BaseRefit {
   BaseFoam base;                                ///< the refitted base
+  std::vector<EffectSpec> kept;                 ///< the kept effects with their refitted magnitudes
   std::map<std::string, double> ratio_before;   ///< per test: the effects over noise against the true base [-]
   std::map<std::string, double> ratio_after;    ///< per test: what the refitted base leaves, in noise units [-]
   double chi2_before = 0.0, chi2_after = 0.0;   ///< sums of squared noise-normalised differences [-]
@@ -27,8 +28,12 @@ struct BaseRefit {
 };
 
 /// Refits `truth_base` (from `start`, the truth's base when null) to the noise-free plan records of truth_base +
-/// effects. Never ends above its start's chi2.
+/// effects. Never ends above its start's chi2. With `kept`, the model is the base plus those effects, each with its
+/// form's magnitude refitted too (a log factor, from 1, the shape parameters as given): what is left is then the part
+/// of the data that neither the base nor the kept effects can take up, e.g. the weaker member of a pair beyond the
+/// stronger one (pair_member_beyond_partner).
 BaseRefit refit_base(const BaseFoam& truth_base, const std::vector<EffectSpec>& effects, const TestPlan& plan,
-                     const BaseFoam* start = nullptr, int max_iterations = 25);
+                     const BaseFoam* start = nullptr, int max_iterations = 25,
+                     const std::vector<EffectSpec>& kept = {});
 
 }  // namespace foreign_bench

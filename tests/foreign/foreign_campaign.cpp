@@ -236,6 +236,10 @@ CampaignTruth draw_truth(const std::string& name, const CampaignKind& kind, std:
     truth.all_effects_after_base_refit = truth.effects.size() == 1
                                              ? truth.effect_after_base_refit.at(truth.effects.front().family)
                                              : refit_base(truth.base, truth.effects, plan).ratio_after;
+  if (refit != BaseRefitUse::none && truth.effects.size() == 2)
+    for (std::size_t k = 0; k < 2; ++k)
+      truth.member_beyond_partner[truth.effects[k].family] =
+          refit_base(truth.base, truth.effects, plan, nullptr, 25, {truth.effects[1 - k]}).ratio_after;
   return truth;
 }
 
@@ -314,6 +318,8 @@ void write_campaign(const CampaignTruth& truth, const TestPlan& plan, const fs::
       p["after_base_refit"] = truth.effect_after_base_refit.at(e.family);
       p["sized_against"] = truth.sized_by.at(e.family);
     }
+    if (truth.member_beyond_partner.count(e.family))
+      p["beyond_partner_refit"] = truth.member_beyond_partner.at(e.family);
     t["parameters"][e.family] = p;
   }
   if (!truth.all_effects_after_base_refit.empty())

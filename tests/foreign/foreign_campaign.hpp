@@ -97,6 +97,11 @@ struct CampaignTruth {
   /// test -> what it leaves of all the effects together (empty otherwise).
   std::map<std::string, std::map<std::string, double>> effect_after_base_refit;
   std::map<std::string, double> all_effects_after_base_refit;
+  /// With BaseRefitUse report or scale, for a pair: family -> test -> what a refitted base PLUS the other member (its
+  /// magnitude refitted, its shape as drawn) leaves of the pair's records, i.e. of this member beyond its partner.
+  /// Below about 3x noise the tests cannot show this member once the other is in the model (the shape held makes it an
+  /// upper bound: a partner with its shape free too could take up more).
+  std::map<std::string, std::map<std::string, double>> member_beyond_partner;
   std::map<std::string, std::string> sized_by;  ///< family -> what its size was measured against (with BaseRefitUse):
                                                 ///< sized_by_true_base or sized_by_base_refit
 };

@@ -182,6 +182,11 @@ TEST(ForeignBaseRefit, RecoversTheBaseFromAPerturbedStartWhenTheDataHaveNoEffect
   EXPECT_EQ(refit.chi2_before, 0.0);
 }
 
+/// A Jenkins slider of random shape on `foam`, sized to 20x noise in the plan's most sensitive test.
+EffectSpec jenkins_sized_20x(const BaseFoam& foam, const TestPlan& plan, Random& random) {
+  return scale_effect(draw_effect_shape(find_form("friction", "jenkins"), foam, random), foam, plan, 20.0);
+}
+
 TEST(ForeignBaseRefit, RateIndependentFrictionIsNotAbsorbedAndTheRefitNeverEndsAboveItsStart) {
   // A Jenkins slider gives the same hysteresis at 12 and 600 mm/min, which no Prony base can: most of it stays
   // (campaign c042 of seed 2025: 14.9x noise against the true base, 10.4x after the refit). Any effect: the refit
@@ -189,8 +194,7 @@ TEST(ForeignBaseRefit, RateIndependentFrictionIsNotAbsorbedAndTheRefitNeverEndsA
   const TestPlan plan = standard_plan();
   const BaseFoam foam = sample_foam("soft_plateau_50", 7);
   Random random(3);
-  const EffectSpec jenkins =
-      scale_effect(draw_effect_shape(find_form("friction", "jenkins"), foam, random), foam, plan, 20.0);
+  const EffectSpec jenkins = jenkins_sized_20x(foam, plan, random);
   const BaseRefit refit = refit_base(foam, {jenkins}, plan);
   EXPECT_LE(refit.chi2_after, refit.chi2_before);
   EXPECT_GT(largest(refit.ratio_after), 0.3 * largest(refit.ratio_before));
@@ -201,6 +205,33 @@ TEST(ForeignBaseRefit, RateIndependentFrictionIsNotAbsorbedAndTheRefitNeverEndsA
   std::cout << "jenkins " << largest(refit.ratio_before) << " -> " << largest(refit.ratio_after) << "x noise ("
             << refit.iterations << " iterations), exponential damage " << largest(absorbed.ratio_before) << " -> "
             << largest(absorbed.ratio_after) << "x\n";
+}
+
+TEST(ForeignBaseRefit, AKeptEffectStartedAtHalfItsMagnitudeIsRefittedToTheRecordsAndAnotherOneIsNot) {
+  // Records of the base + a Jenkins slider. (1) The model base + the same slider at half its magnitude (kept, the
+  // magnitude refitted from there): the refit must find the magnitude within 1 % and leave under 0.05x noise on
+  // every test. (2) Kept is an Ogden-Roxburgh Mullins instead (the pair measure of a member against a wrong partner):
+  // it must leave most of the slider, as the base alone does (0.7-1.1x what the refit without it leaves).
+  const TestPlan plan = standard_plan();
+  const BaseFoam foam = sample_foam("soft_plateau_50", 7);
+  Random random(3);
+  const EffectSpec jenkins = jenkins_sized_20x(foam, plan, random);
+  const std::string magnitude = find_form("friction", "jenkins").magnitude;
+  EffectSpec half = jenkins;
+  half.parameters[magnitude] *= 0.5;
+  const BaseRefit same = refit_base(foam, {jenkins}, plan, nullptr, 25, {half});
+  ASSERT_EQ(same.kept.size(), 1u);
+  EXPECT_NEAR(same.kept.front().parameters.at(magnitude), jenkins.parameters.at(magnitude),
+              0.01 * jenkins.parameters.at(magnitude));
+  EXPECT_LT(largest(same.ratio_after), 0.05);
+  const EffectSpec mullins =
+      scale_effect(draw_effect_shape(find_form("mullins", "ogden_roxburgh"), foam, random), foam, plan, 20.0);
+  const double alone = largest(refit_base(foam, {jenkins}, plan).ratio_after);
+  const double beside_mullins = largest(refit_base(foam, {jenkins}, plan, nullptr, 25, {mullins}).ratio_after);
+  EXPECT_GT(beside_mullins, 0.7 * alone);
+  EXPECT_LE(beside_mullins, 1.1 * alone);  // the Mullins it starts with, not in the data, is stepped down
+  std::cout << "jenkins left by a base refit " << alone << "x noise, with a Mullins partner refitted " << beside_mullins
+            << "x\n";
 }
 
 TEST(ForeignCampaign, ScaledBeyondTheBaseRefitAnAbsorbedMullinsFormIsLeftAt10To50TimesTheNoise) {
@@ -217,6 +248,38 @@ TEST(ForeignCampaign, ScaledBeyondTheBaseRefitAnAbsorbedMullinsFormIsLeftAt10To5
   EXPECT_LE(left, 50.0);
   EXPECT_GT(largest(truth.effect_over_noise.at("mullins")), 2.0 * left);
   EXPECT_NEAR(largest(truth.all_effects_after_base_refit), left, 1e-9 * left);
+}
+
+TEST(ForeignCampaign, APairRecordsEachMemberBeyondItsPartnerAndOnlyAPairDoes) {
+  // --base-refit report on a pair (Jenkins friction + Ogden-Roxburgh Mullins): each member gets what a base refitted
+  // with the other member leaves, on every test of the plan, finite; the rate-independent slider, which no Prony base
+  // and no softening takes up (ForeignBaseRefit above), stays beyond 3x noise beside its Mullins partner. A single
+  // records none. truth.json carries one record per member.
+  const TestPlan plan = standard_plan();
+  const CampaignTruth pair = draw_truth("p", {{"friction", "mullins"}, {"jenkins", "ogden_roxburgh"}},
+                                        mix_seed(2026, 55), plan, BaseRefitUse::report);
+  ASSERT_EQ(pair.member_beyond_partner.size(), 2u);
+  const double together = largest(pair.all_effects_after_base_refit);
+  for (const auto& [family, ratios] : pair.member_beyond_partner) {
+    EXPECT_EQ(ratios.size(), pair.all_effects_after_base_refit.size()) << family;
+    for (const auto& [test, r] : ratios) EXPECT_TRUE(std::isfinite(r) && r >= 0.0) << family << " " << test;
+    std::cout << family << " beyond its partner " << largest(ratios) << "x noise (both beyond the base: " << together
+              << "x)\n";
+  }
+  EXPECT_GT(largest(pair.member_beyond_partner.at("friction")), 3.0);
+  const CampaignTruth single =
+      draw_truth("s", {{"friction"}, {"jenkins"}}, mix_seed(2026, 56), plan, BaseRefitUse::report);
+  EXPECT_TRUE(single.member_beyond_partner.empty());
+  const auto dir = std::filesystem::temp_directory_path() / "cushion_foreign_pair_truth";
+  write_campaign(pair, plan, dir);
+  std::ifstream in(dir / "truth.json");
+  const std::string text(std::istreambuf_iterator<char>(in), {});
+  int records = 0;
+  for (auto at = text.find("beyond_partner_refit"); at != std::string::npos;
+       at = text.find("beyond_partner_refit", at + 1))
+    ++records;
+  EXPECT_EQ(records, 2);
+  std::filesystem::remove_all(dir);
 }
 
 TEST(ForeignCampaign, OnlyFormsWithoutARandomShapeParameterDrawTheSameShapeTwice) {
