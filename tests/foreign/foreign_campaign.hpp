@@ -72,7 +72,8 @@ EffectSpec scale_effect_beyond_base_refit(EffectSpec shape, const BaseFoam& foam
 /// What the generator says of each effect besides its size against the true base (--base-refit):
 ///   none    nothing more (the default: fast, the campaigns of earlier sessions unchanged);
 ///   report  truth.json also records what a refitted base of the generator's own family leaves of each effect and
-///           of all of them together ("after_base_refit"), the effects scaled as before;
+///           of all of them together ("after_base_refit"), and of each member of a pair what that base refitted
+///           with the other member leaves ("beyond_partner_refit"), the effects scaled as before;
 ///   scale   each effect scaled so that what the refitted base leaves of it is 14-36 x noise (a shape that cannot
 ///           reach that is drawn again, up to shape_draws_beyond_base_refit draws; then the effect is sized against
 ///           the true base as without refit, and truth.json says so in "sized_against"), and reported as with report.

@@ -33,8 +33,9 @@ int usage(const std::string& message) {
          "  at that preload / 120 mm/min test holding S seconds at the peak in every campaign (validation), the\n"
          "  truth and the other records unchanged.\n"
          "  --base-refit: report also records in truth.json what a refitted base of the generator's own family\n"
-         "  leaves of the effects; scale sizes each effect by that instead of by its difference from the true\n"
-         "  base (default none).\n"
+         "  leaves of the effects (and, of each member of a pair, what that base refitted with the other member\n"
+         "  leaves: beyond_partner_refit); scale sizes each effect by that instead of by its difference from the\n"
+         "  true base (default none).\n"
          "  --only: write just the campaign so named (c038: the 39th), the same as in the whole set.\n"
          "  --sweep-substeps: integration steps of the foam per sample of a sweep (default 1, one a sample, the\n"
          "  dashpots' secant rate then lags by half a sample interval as in cushion's model; n: n times less).\n";
