@@ -181,6 +181,12 @@ def lists_tests_beyond_noise(camp):
     return "Tests still beyond noise after adding it" in r["verdict"]
 
 rows, undiagnosed = [], []
+def weakest_member(truth, key):
+    """Of a pair: the smallest over its members of the largest ratio over the tests in parameters.FAMILY.key (x noise);
+    None for a single or a control, or when a member has no such record."""
+    largest = [max(p[key].values()) for p in truth.get("parameters", {}).values() if isinstance(p, dict) and p.get(key)]
+    return min(largest) if len(truth["families"]) > 1 and len(largest) == len(truth["families"]) else None
+
 for line in csv.DictReader(open(os.path.join(out, "campaigns", "index.csv"))):
     camp = os.path.join(out, "campaigns", line["campaign"])
     if not os.path.exists(os.path.join(camp, "bench_status.txt")):  # ONLY: not run yet
@@ -197,14 +203,10 @@ for line in csv.DictReader(open(os.path.join(out, "campaigns", "index.csv"))):
     else:
         right = sorted(named) == sorted(true)            # both families of a pair
     left = truth.get("after_base_refit", {}).get("largest")  # what the generator's own base refit leaves (report|scale)
-    # of a pair: what that refit leaves of its weaker member alone (largest over the tests), the member hardest to show
-    member_left = [max(p["after_base_refit"].values()) for p in truth.get("parameters", {}).values()
-                   if isinstance(p, dict) and p.get("after_base_refit")]
-    weaker = min(member_left) if len(true) > 1 and len(member_left) == len(true) else None
-    # of a pair: what a base refit PLUS the other member (its magnitude refitted) leaves, for the member hardest to show
-    beyond = [max(p["beyond_partner_refit"].values()) for p in truth.get("parameters", {}).values()
-              if isinstance(p, dict) and p.get("beyond_partner_refit")]
-    weaker_beyond = min(beyond) if len(true) > 1 and len(beyond) == len(true) else None
+    # of a pair, for the member hardest to show: what that refit leaves of it alone, and what a base refit PLUS the
+    # other member (its magnitude refitted) leaves of the pair's records
+    weaker = weakest_member(truth, "after_base_refit")
+    weaker_beyond = weakest_member(truth, "beyond_partner_refit")
     truth_worst, truth_map = truth_in_catalogue(camp)
     rows.append(dict(campaign=line["campaign"], truth=label, forms=line["forms"], base=truth["base"]["family"],
                      verdict="+".join(named), rival="+".join(rival) or "-", right=right, baseline_error_over_noise=baseline,

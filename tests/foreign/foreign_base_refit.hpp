@@ -31,9 +31,10 @@ struct BaseRefit {
 /// effects. Never ends above its start's chi2. With `kept`, the model is the base plus those effects, each with its
 /// form's magnitude refitted too (a log factor, from 1, the shape parameters as given): what is left is then the part
 /// of the data that neither the base nor the kept effects can take up, e.g. the weaker member of a pair beyond the
-/// stronger one (pair_member_beyond_partner).
+/// stronger one (CampaignTruth::member_beyond_partner).
+constexpr int base_refit_iterations = 25;  ///< Levenberg-Marquardt iterations of a refit by default
 BaseRefit refit_base(const BaseFoam& truth_base, const std::vector<EffectSpec>& effects, const TestPlan& plan,
-                     const BaseFoam* start = nullptr, int max_iterations = 25,
+                     const BaseFoam* start = nullptr, int max_iterations = base_refit_iterations,
                      const std::vector<EffectSpec>& kept = {});
 
 }  // namespace foreign_bench

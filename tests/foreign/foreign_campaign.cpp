@@ -239,7 +239,8 @@ CampaignTruth draw_truth(const std::string& name, const CampaignKind& kind, std:
   if (refit != BaseRefitUse::none && truth.effects.size() == 2)
     for (std::size_t k = 0; k < 2; ++k)
       truth.member_beyond_partner[truth.effects[k].family] =
-          refit_base(truth.base, truth.effects, plan, nullptr, 25, {truth.effects[1 - k]}).ratio_after;
+          refit_base(truth.base, truth.effects, plan, nullptr, base_refit_iterations, {truth.effects[1 - k]})
+              .ratio_after;
   return truth;
 }
 

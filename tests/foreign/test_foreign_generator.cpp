@@ -219,7 +219,7 @@ TEST(ForeignBaseRefit, AKeptEffectStartedAtHalfItsMagnitudeIsRefittedToTheRecord
   const std::string magnitude = find_form("friction", "jenkins").magnitude;
   EffectSpec half = jenkins;
   half.parameters[magnitude] *= 0.5;
-  const BaseRefit same = refit_base(foam, {jenkins}, plan, nullptr, 25, {half});
+  const BaseRefit same = refit_base(foam, {jenkins}, plan, nullptr, base_refit_iterations, {half});
   ASSERT_EQ(same.kept.size(), 1u);
   EXPECT_NEAR(same.kept.front().parameters.at(magnitude), jenkins.parameters.at(magnitude),
               0.01 * jenkins.parameters.at(magnitude));
@@ -227,7 +227,8 @@ TEST(ForeignBaseRefit, AKeptEffectStartedAtHalfItsMagnitudeIsRefittedToTheRecord
   const EffectSpec mullins =
       scale_effect(draw_effect_shape(find_form("mullins", "ogden_roxburgh"), foam, random), foam, plan, 20.0);
   const double alone = largest(refit_base(foam, {jenkins}, plan).ratio_after);
-  const double beside_mullins = largest(refit_base(foam, {jenkins}, plan, nullptr, 25, {mullins}).ratio_after);
+  const double beside_mullins =
+      largest(refit_base(foam, {jenkins}, plan, nullptr, base_refit_iterations, {mullins}).ratio_after);
   EXPECT_GT(beside_mullins, 0.7 * alone);
   EXPECT_LE(beside_mullins, 1.1 * alone);  // the Mullins it starts with, not in the data, is stepped down
   std::cout << "jenkins left by a base refit " << alone << "x noise, with a Mullins partner refitted " << beside_mullins
