@@ -642,7 +642,8 @@ CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector
     const bool stopped_at_failure = summary.termination_type == ceres::FAILURE && u != start;
     fit.converged = summary.IsSolutionUsable() || stopped_at_failure;
     fit.message = summary.BriefReport();
-    if (summary.termination_type == ceres::NO_CONVERGENCE)
+    fit.at_iteration_limit = summary.termination_type == ceres::NO_CONVERGENCE;
+    if (fit.at_iteration_limit)
       fit.warning = "did not converge within " + std::to_string(options.max_iterations) +
                     " iterations; ranked with the best parameters found (chi2/N may still fall: raise --max-iterations)";
     if (summary.termination_type == ceres::USER_SUCCESS)
@@ -1140,8 +1141,9 @@ std::vector<std::size_t> best_first(const std::vector<CandidateFit>& fits) {
   return order;
 }
 
-/// The best single's continuation (fit_polished_only): `fit`, the single `single` (index into the singles) fitted once
-/// more from its polished fit with its polished_only parameters free too.
+/// The best single's continuation (fit_polished_only, continue_unfinished_polish): `fit`, the single `single` (index
+/// into the singles) fitted once more from its polished fit, with its polished_only parameters free too where it has
+/// them.
 struct Continuation {
   std::size_t single = 0;
   CandidateFit fit;
@@ -1364,8 +1366,9 @@ CandidateFit polish_single(const CandidateFit& f, const CandidateJobs& c, const 
   return refit_with_more_free(f, c.campaign, c.d.noise, c.d.residuals, c.d.baseline_bic, free_all, &c.spare);
 }
 
-/// Step 2b, continued (DiagnoseOptions::fit_polished_only): the best single after the polish, when it was polished and
-/// its effect has polished_only parameters (mullins beta), fitted once more from its polished fit with them free too;
+/// Step 2b, continued (DiagnoseOptions::fit_polished_only, continue_unfinished_polish): the best single after the
+/// polish, when it was polished and its effect has polished_only parameters (mullins beta) or its polish stopped at the
+/// iteration limit with a test beyond noise, fitted once more from its polished fit with those parameters free too;
 /// returned when its BIC is lower (the pairs still start from and are judged against the polished fit:
 /// rank_candidates). The continuation starts where the polish ended, so it can only lower the chi2: freed together
 /// with the Prony times and exponents from the single's fit, beta took two Ogden-Roxburgh campaigns to worse minima
@@ -1376,19 +1379,23 @@ std::optional<Continuation> continue_best_single(const CandidateJobs& c, std::ve
                                                  std::ostream& log) {
   const DiagnoseOptions& o = c.options;
   const std::vector<std::size_t> order = best_first(fits);
-  if (!o.fit_polished_only || order.empty()) return std::nullopt;
+  if (order.empty()) return std::nullopt;
   CandidateFit& best = fits[order.front()];
-  const std::string names = polished_only_names(best.effects);
-  if (!best.converged || !best.polished || names.empty()) return std::nullopt;
+  const std::string names = o.fit_polished_only ? polished_only_names(best.effects) : "";
+  const bool unfinished = o.continue_unfinished_polish && best.at_iteration_limit &&
+                          !best.compare.at_noise_level(o.compare.noise_level_ratio);
+  if (!best.converged || !best.polished || (names.empty() && !unfinished)) return std::nullopt;
   DiagnoseOptions more = polish_freedoms(o);
-  more.polishing = true;
+  more.polishing = !names.empty();  // beta free only where fit_polished_only asks for it
   const std::vector<std::function<CandidateFit()>> job{[&c, &best, more] { return polish_single(best, c, more); }};
   CandidateFit q = run_all(job, o.threads, {}, &c.spare).front();
   const int runs = q.evaluations - best.evaluations;
   const double seconds = q.seconds - best.seconds;
   const bool kept = q.converged && q.bic < best.bic;
-  log << "diagnose: " << best.name() << " continued from its polish with " << names << " free too: dBIC "
-      << fmt(best.delta_bic, 4) << " -> " << fmt(q.delta_bic, 4) << ", " << runs << " runs, " << fmt(seconds, 2) << " s"
+  log << "diagnose: " << best.name() << " continued from its polish"
+      << (names.empty() ? " (stopped by the iteration limit beyond noise)" : " with " + names + " free too")
+      << ": dBIC " << fmt(best.delta_bic, 4) << " -> " << fmt(q.delta_bic, 4) << ", " << runs << " runs, "
+      << fmt(seconds, 2) << " s"
       << (kept          ? " (ranks the single; its pairs start from the polish)"
           : q.converged ? " (not kept: no lower BIC)"
                         : " (failed, not kept: " + q.message + ")")

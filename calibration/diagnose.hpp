@@ -36,7 +36,9 @@
 ///     against the reference. With options.fit_polished_only (default), the best single after the polish, when its
 ///     effect has polished_only parameters (material/effect_catalog.hpp: mullins beta), is fitted once more from its
 ///     polished fit with them free too, and that fit ranks the single when its BIC is lower; the pairs (step 3) start
-///     from the polish before and are judged against it; at the noise level, it leaves no room for a pair.
+///     from the polish before and are judged against it; at the noise level, it leaves no room for a pair. So is the
+///     best single whose polish stopped at max_iterations with a test beyond noise (options.continue_unfinished_polish,
+///     default), for max_iterations more.
 ///     With options.polished_challengers (off by default), when one is, the best near misses (above the reference's
 ///     dBIC, not by strong_evidence) are polished too (challengers), each judged by its polished fit against the
 ///     reference polished alike.
@@ -203,6 +205,11 @@ struct DiagnoseOptions {
   /// c017 3.07 -> 1.41x, scale c043 3.68 -> 1.09x). Continuing every polished Mullins single and starting the pairs
   /// from it (9.41) had lost two Mullins pairs and named Mullins on a Bouc-Wen friction.
   bool fit_polished_only = true;
+  /// Step 2b, continued as well: the best single after the polish, when the polish stopped at max_iterations
+  /// (CandidateFit::at_iteration_limit) with a test still beyond noise, is fitted once more from its polished fit with
+  /// the same freedoms for max_iterations more, and ranks the single when its BIC is lower (like the continuation
+  /// above; the pairs still start from the polish). `--no-continue-polish`: off (docs/physics.md 9.44).
+  bool continue_unfinished_polish = true;
   /// Set for the continuation above, not by users: the polished_only parameters are fitted too.
   bool polishing = false;
   /// Step 2b, challengers: when some single is polished as a leader (an effect is evidently missing and the question
@@ -272,6 +279,7 @@ struct CandidateFit {
   bool converged = false;
   std::string message;                     ///< Ceres report, or why the candidate failed
   std::string warning;                     ///< usable but not converged (iteration limit), else empty
+  bool at_iteration_limit = false;         ///< Levenberg-Marquardt stopped by DiagnoseOptions::max_iterations
   double chi2 = 0.0, bic = 0.0, delta_bic = 0.0;
   bool supported = false;
   /// Why a converged candidate is not supported although its dBIC passes (a pair whose second effect explains less

@@ -109,6 +109,10 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
       "after the polish, when the best single is Mullins, fit it once more from there with its beta free too and "
       "rank the single by that fit; the pairs start from the polish with beta held at 0.1 (on by default; "
       "--no-polish-mullins-beta holds beta at 0.1 throughout, docs/physics.md 9.41-9.42)");
+  sub->add_flag("--continue-polish,!--no-continue-polish", opt->options.continue_unfinished_polish,
+                "after the polish, when the best single's polish stopped at --max-iterations with a test still beyond "
+                "noise, fit it once more from there for as many iterations and rank the single by that fit; the "
+                "pairs start from the polish (on by default; docs/physics.md 9.44)");
   sub->add_option(
          "--polish-challengers", opt->options.polished_challengers,
          "when a single is supported, polish also the N best near misses (singles above the base refit's "
