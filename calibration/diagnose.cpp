@@ -171,9 +171,10 @@ class CandidateModel {
   /// a_i = g_i/(1 - sum g) of every Prony term of the base (the base-refit reference; no effect), with
   /// `times` one in [-b.time_decades, b.time_decades] on every Prony time tau_i, and with `exponents` one in
   /// [-b.exponent_decades, b.exponent_decades] on every hyperfoam exponent alpha_i (its sign kept). A Prony term the
-  /// base holds at a_i = 0 first gets a start a factor can move (revive_dead_prony_terms).
-  void free_base_moduli(bool times, bool exponents, const BaseFactorBounds& b) {
-    revive_dead_prony_terms(base_);
+  /// base holds at a_i = 0 first gets a start a factor can move (revive_dead_prony_terms), unless `revive` is false (a
+  /// fit that must start exactly at the base it is given).
+  void free_base_moduli(bool times, bool exponents, const BaseFactorBounds& b, bool revive) {
+    if (revive) revive_dead_prony_terms(base_);
     static const material::EffectParameterInfo factor{"modulus_factor", "factor on a base modulus", 1.0, 0.1, 10.0,
                                                       true, true, true};
     // name and log scale (each fit's bounds: b)
@@ -625,7 +626,7 @@ CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector
   CandidateModel model(base, start_effects, campaign, noise, options);
   if (refit_base) {
     // a joint candidate has every parameter of the reference
-    model.free_base_moduli(options.base_times, options.base_exponents, options.base_bounds);
+    model.free_base_moduli(options.base_times, options.base_exponents, options.base_bounds, !options.continuing);
     fit.base_refitted = true;
     if (start_effects.empty())
       fit.kinds.push_back("base refit (" + refitted_base_parameters(options) + ")");
@@ -1370,7 +1371,8 @@ CandidateFit polish_single(const CandidateFit& f, const CandidateJobs& c, const 
 /// polish, when it was polished and its effect has polished_only parameters (mullins beta) or its polish stopped at the
 /// iteration limit with a test beyond noise, fitted once more from its polished fit with those parameters free too;
 /// returned when its BIC is lower (the pairs still start from and are judged against the polished fit:
-/// rank_candidates). The continuation starts where the polish ended, so it can only lower the chi2: freed together
+/// rank_candidates). The continuation starts where the polish ended (DiagnoseOptions::continuing: no dead Prony term
+/// revived), so it can only lower the chi2: freed together
 /// with the Prony times and exponents from the single's fit, beta took two Ogden-Roxburgh campaigns to worse minima
 /// than the polish with beta held (docs/physics.md 9.41). Only the best single: it refines the family the singles
 /// rank first and does not re-rank the families, since a freedom only one family gets tips near ties (the in-repository
@@ -1387,6 +1389,7 @@ std::optional<Continuation> continue_best_single(const CandidateJobs& c, std::ve
   if (!best.converged || !best.polished || (names.empty() && !unfinished)) return std::nullopt;
   DiagnoseOptions more = polish_freedoms(o);
   more.polishing = !names.empty();  // beta free only where fit_polished_only asks for it
+  more.continuing = true;
   const std::vector<std::function<CandidateFit()>> job{[&c, &best, more] { return polish_single(best, c, more); }};
   CandidateFit q = run_all(job, o.threads, {}, &c.spare).front();
   const int runs = q.evaluations - best.evaluations;

@@ -212,6 +212,10 @@ struct DiagnoseOptions {
   bool continue_unfinished_polish = true;
   /// Set for the continuation above, not by users: the polished_only parameters are fitted too.
   bool polishing = false;
+  /// Set for the continuations above, not by users: the fit starts exactly where the polish ended, a Prony term the
+  /// polish left at a_i = 0 is not revived (revive_dead_prony_terms): revived, seed-2027 c024's friction continuation
+  /// started at chi2 9508 instead of the polish's 5459 and ended above it (docs/physics.md 9.44).
+  bool continuing = false;
   /// Step 2b, challengers: when some single is polished as a leader (an effect is evidently missing and the question
   /// is which), the `polished_challengers` best near misses (singles whose dBIC before any polish lies above the base
   /// refit's but not above the reference's gain + strong_evidence) are polished as well, and so is the base refit

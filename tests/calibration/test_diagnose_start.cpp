@@ -523,6 +523,23 @@ TEST(DiagnoseStart, APolishStoppedByTheIterationLimitBeyondNoiseIsContinued) {
   fs::remove_all(c.set);
 }
 
+// The continuation starts exactly where the polish ended (DiagnoseOptions::continuing: a Prony term the polish left at
+// a_i = 0 is not revived), so it can only lower the chi2. Seed-2027 c024 (Qi-Boyce-like Mullins on a soft 50 kg/m3
+// foam), friction alone: its polish stops at the iteration limit (dBIC 8853) with a term at tau 1 s dead (g 1.2e-5);
+// revived, the continuation started at chi2 9508 instead of 5459 and ended at dBIC 8645, not kept; from the polish's
+// own end it reaches 9083 (2026-12-07).
+TEST(DiagnoseStart, APolishContinuationStartsWhereThePolishEnded) {
+  const BenchCampaign c = bench_campaign("diagnose_continue_start", "c024", "--base-refit scale", 2027);
+  ASSERT_EQ(c.truth.at("forms").at(0).get<std::string>(), "qi_boyce_like") << "the generator's mix changed";
+  const nlohmann::json continued = cushion::foreign_program::diagnose_raw(c.dir, "--candidates friction");
+  const nlohmann::json polished =
+      cushion::foreign_program::diagnose_raw(c.dir, "--candidates friction --no-continue-polish", "diag_polish");
+  const nlohmann::json& p = polished.at("candidates").at(0);
+  ASSERT_NE(p.at("message").get<std::string>().find("NO_CONVERGENCE"), std::string::npos) << "the polish converged";
+  EXPECT_GT(continued.at("candidates").at(0).at("delta_bic").get<double>(), p.at("delta_bic").get<double>() + 10.0);
+  fs::remove_all(c.set);
+}
+
 // A pair must explain DiagnoseOptions::pair_share (25 %) of the chi2 its best single leaves (docs/physics.md 9.13).
 // Scale-set c041: Bouc-Wen friction on a soft 50 kg/m3 foam, a single effect. Friction + Mullins beats friction alone by
 // dBIC 17 (the 2026-12-01 benchmark, all candidates) but explains 13 % of the chi2 friction leaves: friction alone is
