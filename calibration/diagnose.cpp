@@ -106,14 +106,18 @@ std::vector<material::PronyTerm> with_long_term_ratios(const std::vector<materia
 /// terms' a_i kept, the g_i renormalised), so that the base factor in [0.1, 10] spans 0.01-1 times the mean. Measured
 /// on the Ogden-Roxburgh campaign c002 (docs/physics.md 9.24): its fitted base holds the term at 0.03 s at 0; given with
 /// that term's g at 0.01 instead, Mullins reaches chi2/N 0.85 (every test within 1.38x noise) against 2.7.
-void revive_dead_prony_terms(material::MaterialSpec& s) {
-  if (s.prony.empty()) return;
+/// Only the base `cushion fit` or the user placed is revived (the reference's first fit, and the joint candidates when
+/// the reference failed): a restart from a fitted point (a polish, a continuation, a pair, a held-out refit) starts
+/// exactly where that fit ended, so it can only lower the chi2 (docs/physics.md 9.45).
+material::MaterialSpec with_dead_prony_terms_revived(material::MaterialSpec s) {
+  if (s.prony.empty()) return s;
   std::vector<double> a = long_term_ratios(s.prony);
   const double mean = std::accumulate(a.begin(), a.end(), 0.0) / static_cast<double>(a.size());
   bool revived = false;
   for (double& x : a)
     if (x < 1e-3 * mean) x = 0.1 * mean, revived = true;
   if (revived) s.prony = with_long_term_ratios(s.prony, a);
+  return s;
 }
 
 /// The cheaper model Levenberg-Marquardt's Jacobian is differenced from: the dynamic tests' fitted cycles at
@@ -171,10 +175,9 @@ class CandidateModel {
   /// a_i = g_i/(1 - sum g) of every Prony term of the base (the base-refit reference; no effect), with
   /// `times` one in [-b.time_decades, b.time_decades] on every Prony time tau_i, and with `exponents` one in
   /// [-b.exponent_decades, b.exponent_decades] on every hyperfoam exponent alpha_i (its sign kept). A Prony term the
-  /// base holds at a_i = 0 first gets a start a factor can move (revive_dead_prony_terms), unless `revive` is false (a
-  /// fit that must start exactly at the base it is given).
-  void free_base_moduli(bool times, bool exponents, const BaseFactorBounds& b, bool revive) {
-    if (revive) revive_dead_prony_terms(base_);
+  /// base holds at a_i = 0 stays there: the start that revives it belongs to the base `cushion fit` or the user placed
+  /// (with_dead_prony_terms_revived, the reference's first fit), never to a fitted point.
+  void free_base_moduli(bool times, bool exponents, const BaseFactorBounds& b) {
     static const material::EffectParameterInfo factor{"modulus_factor", "factor on a base modulus", 1.0, 0.1, 10.0,
                                                       true, true, true};
     // name and log scale (each fit's bounds: b)
@@ -626,7 +629,7 @@ CandidateFit fit_candidate(const material::MaterialSpec& base, const std::vector
   CandidateModel model(base, start_effects, campaign, noise, options);
   if (refit_base) {
     // a joint candidate has every parameter of the reference
-    model.free_base_moduli(options.base_times, options.base_exponents, options.base_bounds, !options.continuing);
+    model.free_base_moduli(options.base_times, options.base_exponents, options.base_bounds);
     fit.base_refitted = true;
     if (start_effects.empty())
       fit.kinds.push_back("base refit (" + refitted_base_parameters(options) + ")");
@@ -700,8 +703,8 @@ CandidateFit fit_reference(const material::MaterialSpec& base, const Campaign& c
                            const DiagnoseOptions& options, SpareCores* spare) {
   DiagnoseOptions fixed = options;
   fixed.base_exponents = false;
-  CandidateFit first =
-      fit_candidate(base, {}, campaign, noise, n_residuals, baseline_bic, fixed, Scan::all_in_turn, true, spare);
+  CandidateFit first = fit_candidate(with_dead_prony_terms_revived(base), {}, campaign, noise, n_residuals,
+                                     baseline_bic, fixed, Scan::all_in_turn, true, spare);
   if (!options.base_exponents || !first.converged) return first;
   CandidateFit f = refit_with_more_free(first, campaign, noise, n_residuals, baseline_bic, options, spare);
   f.fitted_fixed_exponents = std::move(first.fitted);
@@ -1005,7 +1008,11 @@ struct CandidateJobs {
     return [this, effects = std::move(effects), scan, refit_base] {
       if (refit_base && effects.empty())
         return fit_reference(baseline, campaign, d.noise, d.residuals, d.baseline_bic, options, &spare);
-      const material::MaterialSpec& base = refit_base ? joint_start() : baseline;
+      const bool from_reference =
+          d.base_refit && d.base_refit->converged;  // else the baseline, revived as the reference's
+      const material::MaterialSpec base = !refit_base      ? baseline
+                                          : from_reference ? joint_start()
+                                                           : with_dead_prony_terms_revived(baseline);
       return fit_candidate(base, effects, campaign, d.noise, d.residuals, d.baseline_bic, options, scan, refit_base,
                            &spare);
     };
@@ -1371,8 +1378,8 @@ CandidateFit polish_single(const CandidateFit& f, const CandidateJobs& c, const 
 /// polish, when it was polished and its effect has polished_only parameters (mullins beta) or its polish stopped at the
 /// iteration limit with a test beyond noise, fitted once more from its polished fit with those parameters free too;
 /// returned when its BIC is lower (the pairs still start from and are judged against the polished fit:
-/// rank_candidates). The continuation starts where the polish ended (DiagnoseOptions::continuing: no dead Prony term
-/// revived), so it can only lower the chi2: freed together
+/// rank_candidates). The continuation starts where the polish ended (no dead Prony term revived from a fitted point:
+/// with_dead_prony_terms_revived), so it can only lower the chi2: freed together
 /// with the Prony times and exponents from the single's fit, beta took two Ogden-Roxburgh campaigns to worse minima
 /// than the polish with beta held (docs/physics.md 9.41). Only the best single: it refines the family the singles
 /// rank first and does not re-rank the families, since a freedom only one family gets tips near ties (the in-repository
@@ -1389,7 +1396,6 @@ std::optional<Continuation> continue_best_single(const CandidateJobs& c, std::ve
   if (!best.converged || !best.polished || (names.empty() && !unfinished)) return std::nullopt;
   DiagnoseOptions more = polish_freedoms(o);
   more.polishing = !names.empty();  // beta free only where fit_polished_only asks for it
-  more.continuing = true;
   const std::vector<std::function<CandidateFit()>> job{[&c, &best, more] { return polish_single(best, c, more); }};
   CandidateFit q = run_all(job, o.threads, {}, &c.spare).front();
   const int runs = q.evaluations - best.evaluations;
@@ -1411,6 +1417,47 @@ std::optional<Continuation> continue_best_single(const CandidateJobs& c, std::ve
   q.polish_added = best.polish_added + (q.parameters - best.parameters);
   q.delta_bic_unpolished = best.delta_bic_unpolished;
   return Continuation{order.front(), std::move(q)};
+}
+
+/// Step 4b (DiagnoseOptions::continuation_rounds): a single named alone whose last fit (its polish or continuation)
+/// stopped at max_iterations with a test beyond noise is fitted on from there with the continuation's freedoms, up to
+/// continuation_rounds - 1 rounds of max_iterations, while each lowers the BIC by at least strong_evidence. Every
+/// candidate was ranked at the same budget; this only takes the named model to where its fit ends, for its parameters
+/// and its error after (seed-2026 c059, Ogden-Roxburgh: 3.83 -> 1.31x noise; docs/physics.md 9.45). It runs after the
+/// ranking so that it cannot rank a single above a pair fitted at the budget of the others (seed-2026 c055's
+/// friction + Mullins fell below Mullins fitted for three rounds).
+void refine_named_single(const CandidateJobs& c, Diagnosis& d, std::ostream& log) {
+  const DiagnoseOptions& o = c.options;
+  if (!o.continue_unfinished_polish || o.continuation_rounds < 2 || d.candidates.empty()) return;
+  CandidateFit& named = d.candidates.front();
+  if (!named.supported || named.kinds.size() != 1 || !named.polished || !named.converged) return;
+  DiagnoseOptions more = polish_freedoms(o);
+  more.polishing = o.fit_polished_only && !polished_only_names(named.effects).empty();
+  for (int round = 2; round <= o.continuation_rounds; ++round) {
+    if (!named.at_iteration_limit || named.compare.at_noise_level(o.compare.noise_level_ratio)) return;
+    const std::vector<std::function<CandidateFit()>> job{[&c, &named, more] { return polish_single(named, c, more); }};
+    CandidateFit q = run_all(job, o.threads, {}, &c.spare).front();
+    const bool kept = q.converged && q.bic < named.bic;
+    log << "diagnose: " << named.name() << ", named, fitted on (round " << round << " of " << o.continuation_rounds
+        << "): dBIC " << fmt(named.delta_bic, 4) << " -> " << fmt(q.delta_bic, 4) << ", "
+        << q.evaluations - named.evaluations << " runs, " << fmt(q.seconds - named.seconds, 2) << " s"
+        << (kept          ? ""
+            : q.converged ? " (not kept: no lower BIC)"
+                          : " (failed, not kept: " + q.message + ")")
+        << "\n";
+    const bool small_gain = named.bic - q.bic < o.strong_evidence;
+    named.evaluations = q.evaluations;  // every round's runs and time count, kept or not
+    named.seconds = q.seconds;
+    if (!kept) return;
+    q.polished = true;
+    q.supported = true;
+    q.challenger = named.challenger;
+    q.polish_added = named.polish_added + (q.parameters - named.parameters);
+    q.delta_bic_unpolished = named.delta_bic_unpolished;
+    q.support_note = named.support_note;
+    named = std::move(q);
+    if (small_gain) return;
+  }
 }
 
 /// Step 2b: the options.polished_singles best singles that beat the reference by strong_evidence (leaders) and, when
@@ -1896,6 +1943,7 @@ Diagnosis diagnose(const material::MaterialSpec& baseline, const Campaign& campa
     const std::vector<std::size_t> top = pair_sources(singles, more, options);
     std::vector<CandidateFit> pairs = fit_pairs(jobs, singles, top, log);
     rank_candidates(std::move(singles), std::move(pairs), top, std::move(more), options, d);
+    refine_named_single(jobs, d, log);
     confirm_out_of_sample(jobs, d, log);
     if (!d.candidates.empty() && d.candidates.front().supported) {
       winner_verdict(baseline, options, d);

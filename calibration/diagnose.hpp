@@ -58,7 +58,9 @@
 ///     [-0.5, 0.5] on each Prony time, and under base_exponents one in [-0.2, 0.2] on each hyperfoam exponent
 ///     alpha_i): a residual that a slightly different base explains as well is not
 ///     evidence of a missing effect. A pair is preferred to the best single only when its dBIC exceeds the
-///     single's by strong_evidence too.
+///     single's by strong_evidence too. Then (options.continuation_rounds) a single ranked first alone whose fit still
+///     stopped at max_iterations with a test beyond noise is fitted on from there: its parameters and error after,
+///     not the ranking (docs/physics.md 9.45).
 ///  5. Verdict: the best supported candidate, its error per test and region after the refit, whether
 ///     every test then lies at the noise level, the evidence in words (data signatures: rate dependence
 ///     of the hysteresis, loading vs unloading, phase and modulus error vs frequency, preload dependence
@@ -210,12 +212,13 @@ struct DiagnoseOptions {
   /// the same freedoms for max_iterations more, and ranks the single when its BIC is lower (like the continuation
   /// above; the pairs still start from the polish). `--no-continue-polish`: off (docs/physics.md 9.44).
   bool continue_unfinished_polish = true;
+  /// Step 4b: a single named alone (after the ranking) whose last fit stopped at max_iterations with a test beyond
+  /// noise is fitted on from there with the continuation's freedoms, in at most continuation_rounds - 1 more rounds of
+  /// max_iterations, each only while the one before lowered the BIC by at least strong_evidence: the named model's
+  /// parameters and error after, not the ranking (docs/physics.md 9.45). 1: none.
+  int continuation_rounds = 3;
   /// Set for the continuation above, not by users: the polished_only parameters are fitted too.
   bool polishing = false;
-  /// Set for the continuations above, not by users: the fit starts exactly where the polish ended, a Prony term the
-  /// polish left at a_i = 0 is not revived (revive_dead_prony_terms): revived, seed-2027 c024's friction continuation
-  /// started at chi2 9508 instead of the polish's 5459 and ended above it (docs/physics.md 9.44).
-  bool continuing = false;
   /// Step 2b, challengers: when some single is polished as a leader (an effect is evidently missing and the question
   /// is which), the `polished_challengers` best near misses (singles whose dBIC before any polish lies above the base
   /// refit's but not above the reference's gain + strong_evidence) are polished as well, and so is the base refit

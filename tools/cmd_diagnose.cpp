@@ -113,6 +113,12 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
                 "after the polish, when the best single's polish stopped at --max-iterations with a test still beyond "
                 "noise, fit it once more from there for as many iterations and rank the single by that fit; the "
                 "pairs start from the polish (on by default; docs/physics.md 9.44)");
+  sub->add_option("--continuation-rounds", opt->options.continuation_rounds,
+                  "a single named alone whose fit stopped at --max-iterations with a test beyond noise is fitted on "
+                  "from there, up to N rounds of --max-iterations in all counting its polish's continuation, while "
+                  "each gains at least dBIC 10; after the ranking, so it refines the named model only (default 3; "
+                  "1: off; docs/physics.md 9.45)")
+      ->check(CLI::Range(1, 10));
   sub->add_option(
          "--polish-challengers", opt->options.polished_challengers,
          "when a single is supported, polish also the N best near misses (singles above the base refit's "

@@ -124,6 +124,21 @@ void expect_air_branch_within_3x(const nlohmann::json& air, const nlohmann::json
   EXPECT_LT(std::abs(std::log(time)), std::log(3.0)) << "fitted/truth Maxwell time " << time;
 }
 
+/// Diagnoses an Ogden-Roxburgh campaign from raw data with Mullins the only candidate: Mullins named, every test within
+/// 1.5x noise after it, and r, m, beta within 10 % of the truth's (a tolerance on the fit; each test gives the misfit
+/// measured).
+void expect_ogden_roxburgh_recovered(const BenchCampaign& c) {
+  ASSERT_EQ(c.truth.at("forms").at(0).get<std::string>(), "ogden_roxburgh") << "the generator's mix changed";
+  const nlohmann::json& truth = c.truth.at("parameters").at("mullins");
+  const nlohmann::json d = cushion::foreign_program::diagnose_raw(c.dir, "--candidates mullins");
+  ASSERT_EQ(d.at("winner"), "mullins") << d.at("verdict");
+  for (const auto& t : d.at("candidates").at(0).at("compare").at("tests"))
+    EXPECT_LT(t.at("error_over_noise").get<double>(), 1.5) << t.at("name");
+  const nlohmann::json& mullins = d.at("fragment").at("effects").at(0);
+  for (const char* key : {"r", "m_kPa", "beta"})
+    EXPECT_NEAR(mullins.value(key, 0.0), truth.at(key).get<double>(), 0.1 * truth.at(key).get<double>()) << key;
+}
+
 }  // namespace
 
 TEST(DiagnoseStart, WeakJenkinsFrictionIsFoundFromTheScanOfItsOwnParameters) {
@@ -491,16 +506,7 @@ TEST(DiagnoseStart, SecantDampingIsNamedStiffnessDampingOnTheNominalTangent) {
 // 0.497 kPa, 0.212).
 TEST(DiagnoseStart, OgdenRoxburghBetaIsFittedAfterThePolish) {
   const BenchCampaign c = bench_campaign("diagnose_mullins_beta", "c043", "--base-refit scale");
-  ASSERT_EQ(c.truth.at("forms").at(0).get<std::string>(), "ogden_roxburgh") << "the generator's mix changed";
-  const nlohmann::json& truth = c.truth.at("parameters").at("mullins");
-
-  const nlohmann::json d = cushion::foreign_program::diagnose_raw(c.dir, "--candidates mullins");
-  ASSERT_EQ(d.at("winner"), "mullins") << d.at("verdict");
-  for (const auto& t : d.at("candidates").at(0).at("compare").at("tests"))
-    EXPECT_LT(t.at("error_over_noise").get<double>(), 1.5) << t.at("name");
-  const nlohmann::json& mullins = d.at("fragment").at("effects").at(0);
-  for (const char* key : {"r", "m_kPa", "beta"})  // 10 %: a tolerance on the fit, the measured misfit is under 2 %
-    EXPECT_NEAR(mullins.value(key, 0.0), truth.at(key).get<double>(), 0.1 * truth.at(key).get<double>()) << key;
+  expect_ogden_roxburgh_recovered(c);
   fs::remove_all(c.set);
 }
 
@@ -523,8 +529,20 @@ TEST(DiagnoseStart, APolishStoppedByTheIterationLimitBeyondNoiseIsContinued) {
   fs::remove_all(c.set);
 }
 
-// The continuation starts exactly where the polish ended (DiagnoseOptions::continuing: a Prony term the polish left at
-// a_i = 0 is not revived), so it can only lower the chi2. Seed-2027 c024 (Qi-Boyce-like Mullins on a soft 50 kg/m3
+// A single named alone whose fit stopped at the iteration limit with a test beyond noise is fitted on after the ranking
+// (DiagnoseOptions::continuation_rounds, 3 by default; docs/physics.md 9.45). Seed-2026 c059: Ogden-Roxburgh Mullins
+// (r 1.99, m 0.51 kPa, beta 0.16) on a soft 50 kg/m3 foam. After its polish and beta's continuation Mullins leaves qs_12
+// at 3.83x noise (measured 2026-12-07 with `--continuation-rounds 1`: this test then fails on qs_12, qs_120, qs_600 and
+// dyn_50); two more rounds take every test within 1.31x and r, m within 2 %, beta within 4 % of the truth's (measured
+// 1.998, 0.509 kPa, 0.165).
+TEST(DiagnoseStart, ANamedSingleStoppedByTheIterationLimitIsFittedOn) {
+  const BenchCampaign c = bench_campaign("diagnose_refine_named", "c059", "--base-refit scale", 2026);
+  expect_ogden_roxburgh_recovered(c);
+  fs::remove_all(c.set);
+}
+
+// The continuation starts exactly where the polish ended (a Prony term the polish left at a_i = 0 is not revived from
+// a fitted point: with_dead_prony_terms_revived), so it can only lower the chi2. Seed-2027 c024 (Qi-Boyce-like Mullins on a soft 50 kg/m3
 // foam), friction alone: its polish stops at the iteration limit (dBIC 8853) with a term at tau 1 s dead (g 1.2e-5);
 // revived, the continuation started at chi2 9508 instead of 5459 and ended at dBIC 8645, not kept; from the polish's
 // own end it reaches 9083 (2026-12-07).
