@@ -993,14 +993,14 @@ struct CandidateJobs {
     return baseline.base == material::MaterialSpec::Base::hyperfoam && !baseline.hyperfoam.empty();
   }
   /// The base that joint candidates start from: the base refit when it converged (its factors are the best
-  /// base without any effect, so a joint candidate starts no worse than the reference), else the baseline. With
-  /// base_exponents the refit's first run, before its exponents were freed: from the refit with its exponents moved,
-  /// every candidate of the foreign Bouc-Wen case stayed at 8.6-12.5x noise (friction at 9.8x, strain-dependent
-  /// Prony + friction named); from its first run friction reaches 2.5x (docs/physics.md 9.8).
-  const material::MaterialSpec& joint_start() const {
-    if (d.base_refit && d.base_refit->converged && d.base_refit->fitted_fixed_exponents)
-      return *d.base_refit->fitted_fixed_exponents;
-    return d.base_refit && d.base_refit->converged ? d.base_refit->fitted : baseline;
+  /// base without any effect, so a joint candidate starts no worse than the reference), else the baseline with its dead
+  /// Prony terms revived, as the reference started. With base_exponents the refit's first run, before its exponents
+  /// were freed: from the refit with its exponents moved, every candidate of the foreign Bouc-Wen case stayed at
+  /// 8.6-12.5x noise (friction at 9.8x, strain-dependent Prony + friction named); from its first run friction reaches
+  /// 2.5x (docs/physics.md 9.8).
+  material::MaterialSpec joint_start() const {
+    if (!d.base_refit || !d.base_refit->converged) return with_dead_prony_terms_revived(baseline);
+    return d.base_refit->fitted_fixed_exponents ? *d.base_refit->fitted_fixed_exponents : d.base_refit->fitted;
   }
   /// A job fitting these effects (scan: coarse start scan first; refit_base: with the base-refit factors, from
   /// joint_start()).
@@ -1008,11 +1008,7 @@ struct CandidateJobs {
     return [this, effects = std::move(effects), scan, refit_base] {
       if (refit_base && effects.empty())
         return fit_reference(baseline, campaign, d.noise, d.residuals, d.baseline_bic, options, &spare);
-      const bool from_reference =
-          d.base_refit && d.base_refit->converged;  // else the baseline, revived as the reference's
-      const material::MaterialSpec base = !refit_base      ? baseline
-                                          : from_reference ? joint_start()
-                                                           : with_dead_prony_terms_revived(baseline);
+      const material::MaterialSpec base = refit_base ? joint_start() : baseline;
       return fit_candidate(base, effects, campaign, d.noise, d.residuals, d.baseline_bic, options, scan, refit_base,
                            &spare);
     };
@@ -1374,6 +1370,32 @@ CandidateFit polish_single(const CandidateFit& f, const CandidateJobs& c, const 
   return refit_with_more_free(f, c.campaign, c.d.noise, c.d.residuals, c.d.baseline_bic, free_all, &c.spare);
 }
 
+/// One more run of the polished single `from` from where it ended, with the freedoms of `more`: the new fit when it
+/// converged at a lower BIC, with from's polish bookkeeping (and support) carried over, else nothing; its runs and time
+/// are charged to `from` either way. `what` and `kept_note` word the log line.
+std::optional<CandidateFit> fit_on(CandidateFit& from, const CandidateJobs& c, const DiagnoseOptions& more,
+                                   const std::string& what, const std::string& kept_note, std::ostream& log) {
+  const std::vector<std::function<CandidateFit()>> job{[&c, &from, more] { return polish_single(from, c, more); }};
+  CandidateFit q = run_all(job, c.options.threads, {}, &c.spare).front();
+  const bool kept = q.converged && q.bic < from.bic;
+  log << "diagnose: " << from.name() << what << ": dBIC " << fmt(from.delta_bic, 4) << " -> " << fmt(q.delta_bic, 4)
+      << ", " << q.evaluations - from.evaluations << " runs, " << fmt(q.seconds - from.seconds, 2) << " s"
+      << (kept          ? kept_note
+          : q.converged ? " (not kept: no lower BIC)"
+                        : " (failed, not kept: " + q.message + ")")
+      << "\n";
+  from.evaluations = q.evaluations;  // the run's model runs and time count, kept or not
+  from.seconds = q.seconds;
+  if (!kept) return std::nullopt;
+  q.polished = true;
+  q.supported = from.supported;
+  q.support_note = from.support_note;
+  q.challenger = from.challenger;
+  q.polish_added = from.polish_added + (q.parameters - from.parameters);
+  q.delta_bic_unpolished = from.delta_bic_unpolished;
+  return q;
+}
+
 /// Step 2b, continued (DiagnoseOptions::fit_polished_only, continue_unfinished_polish): the best single after the
 /// polish, when it was polished and its effect has polished_only parameters (mullins beta) or its polish stopped at the
 /// iteration limit with a test beyond noise, fitted once more from its polished fit with those parameters free too;
@@ -1396,66 +1418,38 @@ std::optional<Continuation> continue_best_single(const CandidateJobs& c, std::ve
   if (!best.converged || !best.polished || (names.empty() && !unfinished)) return std::nullopt;
   DiagnoseOptions more = polish_freedoms(o);
   more.polishing = !names.empty();  // beta free only where fit_polished_only asks for it
-  const std::vector<std::function<CandidateFit()>> job{[&c, &best, more] { return polish_single(best, c, more); }};
-  CandidateFit q = run_all(job, o.threads, {}, &c.spare).front();
-  const int runs = q.evaluations - best.evaluations;
-  const double seconds = q.seconds - best.seconds;
-  const bool kept = q.converged && q.bic < best.bic;
-  log << "diagnose: " << best.name() << " continued from its polish"
-      << (names.empty() ? " (stopped by the iteration limit beyond noise)" : " with " + names + " free too")
-      << ": dBIC " << fmt(best.delta_bic, 4) << " -> " << fmt(q.delta_bic, 4) << ", " << runs << " runs, "
-      << fmt(seconds, 2) << " s"
-      << (kept          ? " (ranks the single; its pairs start from the polish)"
-          : q.converged ? " (not kept: no lower BIC)"
-                        : " (failed, not kept: " + q.message + ")")
-      << "\n";
-  best.evaluations = q.evaluations;  // the continuation's runs and time count, kept or not
-  best.seconds = q.seconds;
-  if (!kept) return std::nullopt;
-  q.polished = true;
-  q.challenger = best.challenger;
-  q.polish_added = best.polish_added + (q.parameters - best.parameters);
-  q.delta_bic_unpolished = best.delta_bic_unpolished;
-  return Continuation{order.front(), std::move(q)};
+  std::optional<CandidateFit> q = fit_on(
+      best, c, more,
+      " continued from its polish" + (names.empty() ? std::string(" (stopped by the iteration limit beyond noise)")
+                                                    : " with " + names + " free too"),
+      " (ranks the single; its pairs start from the polish)", log);
+  if (!q) return std::nullopt;
+  return Continuation{order.front(), std::move(*q)};
 }
 
-/// Step 4b (DiagnoseOptions::continuation_rounds): a single named alone whose last fit (its polish or continuation)
-/// stopped at max_iterations with a test beyond noise is fitted on from there with the continuation's freedoms, up to
-/// continuation_rounds - 1 rounds of max_iterations, while each lowers the BIC by at least strong_evidence. Every
-/// candidate was ranked at the same budget; this only takes the named model to where its fit ends, for its parameters
-/// and its error after (seed-2026 c059, Ogden-Roxburgh: 3.83 -> 1.31x noise; docs/physics.md 9.45). It runs after the
-/// ranking so that it cannot rank a single above a pair fitted at the budget of the others (seed-2026 c055's
-/// friction + Mullins fell below Mullins fitted for three rounds).
-void refine_named_single(const CandidateJobs& c, Diagnosis& d, std::ostream& log) {
+/// Step 4b (DiagnoseOptions::continuation_rounds): a single named alone whose continuation (continue_best_single) was
+/// kept and still stopped at max_iterations with a test beyond noise is fitted on from there with the continuation's
+/// freedoms, up to continuation_rounds - 1 rounds of max_iterations, while each lowers the BIC by at least
+/// strong_evidence (a continuation not kept would only be repeated). Every candidate was ranked at the same budget;
+/// this only takes the named model to where its fit ends, for its parameters and its error after (seed-2026 c059,
+/// Ogden-Roxburgh: 3.83 -> 1.31x noise; docs/physics.md 9.45). It runs after the ranking so that it cannot rank a
+/// single above a pair fitted at the budget of the others (seed-2026 c055's friction + Mullins fell below Mullins
+/// fitted for three rounds).
+void refine_named_single(const CandidateJobs& c, bool continued, Diagnosis& d, std::ostream& log) {
   const DiagnoseOptions& o = c.options;
-  if (!o.continue_unfinished_polish || o.continuation_rounds < 2 || d.candidates.empty()) return;
+  if (!continued || !o.continue_unfinished_polish || d.candidates.empty()) return;
   CandidateFit& named = d.candidates.front();
-  if (!named.supported || named.kinds.size() != 1 || !named.polished || !named.converged) return;
+  if (!named.supported || named.kinds.size() != 1 || !named.polished) return;
   DiagnoseOptions more = polish_freedoms(o);
   more.polishing = o.fit_polished_only && !polished_only_names(named.effects).empty();
   for (int round = 2; round <= o.continuation_rounds; ++round) {
     if (!named.at_iteration_limit || named.compare.at_noise_level(o.compare.noise_level_ratio)) return;
-    const std::vector<std::function<CandidateFit()>> job{[&c, &named, more] { return polish_single(named, c, more); }};
-    CandidateFit q = run_all(job, o.threads, {}, &c.spare).front();
-    const bool kept = q.converged && q.bic < named.bic;
-    log << "diagnose: " << named.name() << ", named, fitted on (round " << round << " of " << o.continuation_rounds
-        << "): dBIC " << fmt(named.delta_bic, 4) << " -> " << fmt(q.delta_bic, 4) << ", "
-        << q.evaluations - named.evaluations << " runs, " << fmt(q.seconds - named.seconds, 2) << " s"
-        << (kept          ? ""
-            : q.converged ? " (not kept: no lower BIC)"
-                          : " (failed, not kept: " + q.message + ")")
-        << "\n";
-    const bool small_gain = named.bic - q.bic < o.strong_evidence;
-    named.evaluations = q.evaluations;  // every round's runs and time count, kept or not
-    named.seconds = q.seconds;
-    if (!kept) return;
-    q.polished = true;
-    q.supported = true;
-    q.challenger = named.challenger;
-    q.polish_added = named.polish_added + (q.parameters - named.parameters);
-    q.delta_bic_unpolished = named.delta_bic_unpolished;
-    q.support_note = named.support_note;
-    named = std::move(q);
+    const std::string what =
+        ", named, fitted on (round " + std::to_string(round) + " of " + std::to_string(o.continuation_rounds) + ")";
+    std::optional<CandidateFit> q = fit_on(named, c, more, what, "", log);
+    if (!q) return;
+    const bool small_gain = named.bic - q->bic < o.strong_evidence;
+    named = std::move(*q);
     if (small_gain) return;
   }
 }
@@ -1940,10 +1934,11 @@ Diagnosis diagnose(const material::MaterialSpec& baseline, const Campaign& campa
         fit_singles_and_reference(jobs, single_candidates(baseline, options, d.warnings), d, log);
     d.polished_base_refit = polish_leading_singles(jobs, singles, log);
     std::optional<Continuation> more = continue_best_single(jobs, singles, log);
+    const bool continued = more.has_value();
     const std::vector<std::size_t> top = pair_sources(singles, more, options);
     std::vector<CandidateFit> pairs = fit_pairs(jobs, singles, top, log);
     rank_candidates(std::move(singles), std::move(pairs), top, std::move(more), options, d);
-    refine_named_single(jobs, d, log);
+    refine_named_single(jobs, continued, d, log);
     confirm_out_of_sample(jobs, d, log);
     if (!d.candidates.empty() && d.candidates.front().supported) {
       winner_verdict(baseline, options, d);

@@ -212,8 +212,8 @@ struct DiagnoseOptions {
   /// the same freedoms for max_iterations more, and ranks the single when its BIC is lower (like the continuation
   /// above; the pairs still start from the polish). `--no-continue-polish`: off (docs/physics.md 9.44).
   bool continue_unfinished_polish = true;
-  /// Step 4b: a single named alone (after the ranking) whose last fit stopped at max_iterations with a test beyond
-  /// noise is fitted on from there with the continuation's freedoms, in at most continuation_rounds - 1 more rounds of
+  /// Step 4b: a single named alone (after the ranking) whose continuation above was kept and still stopped at
+  /// max_iterations with a test beyond noise is fitted on from there with the continuation's freedoms, in at most continuation_rounds - 1 more rounds of
   /// max_iterations, each only while the one before lowered the BIC by at least strong_evidence: the named model's
   /// parameters and error after, not the ranking (docs/physics.md 9.45). 1: none.
   int continuation_rounds = 3;
