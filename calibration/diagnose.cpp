@@ -10,6 +10,7 @@
 #include <mutex>
 #include <numeric>
 #include <sstream>
+#include <variant>
 
 #include <ceres/ceres.h>
 #include <Eigen/Dense>
@@ -1192,6 +1193,173 @@ double pair_share_explained(const CandidateFit& pair, const CandidateFit& single
   return single.chi2 > 0.0 ? (single.chi2 - pair.chi2) / single.chi2 : 0.0;
 }
 
+/// The parameters of `effects` the catalogue fits in the polish only (EffectParameterInfo::polished_only), "kind name"
+/// each, comma-separated; empty when none.
+std::string polished_only_names(const std::vector<material::EffectSpec>& effects) {
+  std::string names;
+  for (const auto& e : effects)
+    for (const auto& p : material::find_effect(e.kind)->parameters)
+      if (p.polished_only) names += (names.empty() ? "" : ", ") + e.kind + " " + p.name;
+  return names;
+}
+
+/// The freedoms of the polish (step 2b): `o` with every Prony time and hyperfoam exponent free too, within
+/// o.polish_bounds.
+DiagnoseOptions polish_freedoms(const DiagnoseOptions& o) {
+  DiagnoseOptions free_all = o;
+  free_all.base_times = free_all.base_exponents = true;
+  free_all.base_bounds = o.polish_bounds;
+  return free_all;
+}
+
+/// The polish of one single (or of the base refit): refitted from its fit with the freedoms of `free_all`.
+CandidateFit polish_single(const CandidateFit& f, const CandidateJobs& c, const DiagnoseOptions& free_all) {
+  return refit_with_more_free(f, c.campaign, c.d.noise, c.d.residuals, c.d.baseline_bic, free_all, &c.spare);
+}
+
+/// Levenberg-Marquardt stopped `f` at max_iterations with a test still beyond noise: its fit is not finished.
+bool stopped_beyond_noise(const CandidateFit& f, const DiagnoseOptions& o) {
+  return f.at_iteration_limit && !f.compare.at_noise_level(o.compare.noise_level_ratio);
+}
+
+/// Where a fit runs: alone in its stage (run_all of the one job: the idle thread lends its core to the fit's
+/// Jacobian), or as one job of a stage that runs others (it borrows only the cores their threads lend).
+enum class Stage { alone, beside_others };
+
+/// One more run of the polished single `from` from where it ended, with the freedoms of `more`: the new fit when it
+/// converged at a lower BIC, with from's polish bookkeeping (and support) carried over, else nothing; its runs and time
+/// are charged to `from` either way. `what` and `kept_note` word the log line.
+std::optional<CandidateFit> fit_on(CandidateFit& from, const CandidateJobs& c, const DiagnoseOptions& more,
+                                   const std::string& what, const std::string& kept_note, Stage stage,
+                                   std::ostream& log) {
+  const std::function<CandidateFit()> job = [&c, &from, more] { return polish_single(from, c, more); };
+  CandidateFit q =
+      stage == Stage::alone ? run_all<CandidateFit>({job}, c.options.threads, {}, &c.spare).front() : job();
+  const bool kept = q.converged && q.bic < from.bic;
+  log << "diagnose: " << from.name() << what << ": dBIC " << fmt(from.delta_bic, 4) << " -> " << fmt(q.delta_bic, 4)
+      << ", " << q.evaluations - from.evaluations << " runs, " << fmt(q.seconds - from.seconds, 2) << " s"
+      << (kept          ? kept_note
+          : q.converged ? " (not kept: no lower BIC)"
+                        : " (failed, not kept: " + q.message + ")")
+      << "\n";
+  from.evaluations = q.evaluations;  // the run's model runs and time count, kept or not
+  from.seconds = q.seconds;
+  if (!kept) return std::nullopt;
+  q.polished = true;
+  q.supported = from.supported;
+  q.support_note = from.support_note;
+  q.challenger = from.challenger;
+  q.polish_added = from.polish_added + (q.parameters - from.parameters);
+  q.delta_bic_unpolished = from.delta_bic_unpolished;
+  return q;
+}
+
+/// Step 2b, continued (DiagnoseOptions::fit_polished_only, continue_unfinished_polish): the best single after the
+/// polish, when it was polished and its effect has polished_only parameters (mullins beta) or its polish stopped at the
+/// iteration limit with a test beyond noise, fitted once more from its polished fit with those parameters free too;
+/// returned when its BIC is lower (the pairs still start from and are judged against the polished fit:
+/// rank_candidates). The continuation starts where the polish ended (no dead Prony term revived from a fitted point:
+/// with_dead_prony_terms_revived), so it can only lower the chi2: freed together
+/// with the Prony times and exponents from the single's fit, beta took two Ogden-Roxburgh campaigns to worse minima
+/// than the polish with beta held (docs/physics.md 9.41). Only the best single: it refines the family the singles
+/// rank first and does not re-rank the families, since a freedom only one family gets tips near ties (the in-repository
+/// Bouc-Wen friction: Mullins polished 3138, with beta 3353, past friction's 3292; docs/physics.md 9.42).
+std::optional<Continuation> continue_best_single(const CandidateJobs& c, std::vector<CandidateFit>& fits,
+                                                 std::ostream& log) {
+  const DiagnoseOptions& o = c.options;
+  const std::vector<std::size_t> order = best_first(fits);
+  if (order.empty()) return std::nullopt;
+  CandidateFit& best = fits[order.front()];
+  const std::string names = o.fit_polished_only ? polished_only_names(best.effects) : "";
+  const bool unfinished = o.continue_unfinished_polish && stopped_beyond_noise(best, o);
+  if (!best.converged || !best.polished || (names.empty() && !unfinished)) return std::nullopt;
+  DiagnoseOptions more = polish_freedoms(o);
+  more.polishing = !names.empty();  // beta free only where fit_polished_only asks for it
+  std::optional<CandidateFit> q = fit_on(
+      best, c, more,
+      " continued from its polish" + (names.empty() ? std::string(" (stopped by the iteration limit beyond noise)")
+                                                    : " with " + names + " free too"),
+      " (ranks the single; its pairs start from the polish)", Stage::alone, log);
+  if (!q) return std::nullopt;
+  return Continuation{order.front(), std::move(*q)};
+}
+
+/// Rounds 2 .. continuation_rounds of a single whose continuation (continue_best_single) was kept: while its last fit
+/// stopped at max_iterations with a test beyond noise, it is fitted on from there with the continuation's freedoms
+/// (fit_on, max_iterations a round), and again only while a round lowers the BIC by at least strong_evidence. `named`
+/// ends as the last fit kept, every round's runs and time charged to it.
+void fit_in_rounds(CandidateFit& named, const CandidateJobs& c, Stage stage, std::ostream& log) {
+  const DiagnoseOptions& o = c.options;
+  DiagnoseOptions more = polish_freedoms(o);
+  more.polishing = o.fit_polished_only && !polished_only_names(named.effects).empty();
+  for (int round = 2; round <= o.continuation_rounds; ++round) {
+    if (!stopped_beyond_noise(named, o)) return;
+    const std::string what =
+        ", named, fitted on (round " + std::to_string(round) + " of " + std::to_string(o.continuation_rounds) + ")";
+    std::optional<CandidateFit> q = fit_on(named, c, more, what, "", stage, log);
+    if (!q) return;
+    const bool small_gain = named.bic - q->bic < o.strong_evidence;
+    named = std::move(*q);
+    if (small_gain) return;
+  }
+}
+
+/// The rounds (fit_in_rounds) of the continued best single, fitted ahead as one job of the pair stage (fit_pairs)
+/// before the ranking says whether that single is named alone: `end` and `log` are what fit_in_rounds made of the
+/// continuation and wrote. Results and log lines are those of the rounds run after the ranking; only the wall time
+/// differs (a round is a chain of serial fits whose trial steps use one core: beside the pairs the other core is kept
+/// busy; docs/physics.md 9.46). Unused (its time spent for nothing) when a pair or another single is named.
+struct RoundsAhead {
+  std::string name;  ///< the continuation it starts from: name, BIC and runs, to recognise it after the ranking
+  double start_bic = 0.0;
+  int start_evaluations = 0;
+  CandidateFit end;
+  std::string log;
+  bool starts_from(const CandidateFit& f) const {
+    return f.name() == name && f.bic == start_bic && f.evaluations == start_evaluations;
+  }
+};
+
+/// Whether the continuation `more` would be fitted on in rounds if named alone (refine_named_single), and on more than
+/// one thread, so that fitting them ahead can overlap the pairs (on one it would only add their time when unused).
+bool rounds_ahead_worth(const std::optional<Continuation>& more, const DiagnoseOptions& o) {
+  return more && o.threads > 1 && o.continue_unfinished_polish && o.continuation_rounds >= 2 &&
+         more->fit.kinds.size() == 1 && more->fit.polished && stopped_beyond_noise(more->fit, o);
+}
+
+/// The job of the pair stage that fits the rounds ahead from the continuation `more` (rounds_ahead_worth).
+std::function<RoundsAhead()> rounds_ahead_job(const CandidateJobs& c, const Continuation& more) {
+  return [&c, &more] {
+    RoundsAhead r{more.fit.name(), more.fit.bic, more.fit.evaluations, more.fit, ""};
+    std::ostringstream log;
+    fit_in_rounds(r.end, c, Stage::beside_others, log);
+    r.log = log.str();
+    return r;
+  };
+}
+
+/// Step 4b (DiagnoseOptions::continuation_rounds): a single named alone whose continuation (continue_best_single) was
+/// kept and still stopped at max_iterations with a test beyond noise is fitted on in rounds (fit_in_rounds; taken
+/// from `ahead` when the pair stage fitted them for this continuation). Every candidate was ranked at the same budget;
+/// this only takes the named model to where its fit ends, for its parameters and its error after (seed-2026 c059,
+/// Ogden-Roxburgh: 3.83 -> 1.31x noise; docs/physics.md 9.45). It runs after the ranking so that it cannot rank a
+/// single above a pair fitted at the budget of the others (seed-2026 c055's friction + Mullins fell below Mullins
+/// fitted for three rounds).
+void refine_named_single(const CandidateJobs& c, bool continued, std::optional<RoundsAhead> ahead, Diagnosis& d,
+                         std::ostream& log) {
+  const DiagnoseOptions& o = c.options;
+  if (!continued || !o.continue_unfinished_polish || d.candidates.empty()) return;
+  CandidateFit& named = d.candidates.front();
+  if (!named.supported || named.kinds.size() != 1 || !named.polished) return;
+  if (!ahead || !ahead->starts_from(named)) return fit_in_rounds(named, c, Stage::alone, log);
+  CandidateFit& end = ahead->end;  // its support as the ranking judged the single (fit_on carries it over)
+  end.supported = named.supported;
+  end.support_note = named.support_note;
+  end.challenger = named.challenger;
+  named = std::move(end);
+  log << ahead->log;
+}
+
 /// The early stop of a pair whose best single leaves chi2_single: after pair_stop_iteration iterations, chi2 above
 /// (1 - pair_stop_share) chi2_single (DiagnoseOptions::pair_stop_share; none when it is 0).
 EarlyStop pair_stop(const DiagnoseOptions& o, double chi2_single) {
@@ -1251,6 +1419,12 @@ PairOutcome fit_joint_pair(const CandidateJobs& c, const CandidateFit& best,
   return out;
 }
 
+/// The pair stage: the pairs and, fitted beside them, the continued best single's rounds (RoundsAhead).
+struct PairStage {
+  std::vector<CandidateFit> pairs;
+  std::optional<RoundsAhead> rounds;
+};
+
 /// Pairs of the best single with each of the next best, started from their single fits (a pair without the best single
 /// was never within strong_evidence of the best pair: bench seed 2025, session-14 code, 20 campaigns with three pairs,
 /// dBIC 151 to 4643 below it, and the slowest of the three in 7); a joint pair starts from the better
@@ -1276,34 +1450,48 @@ PairOutcome fit_joint_pair(const CandidateJobs& c, const CandidateFit& best,
 /// pair_stop_share of the chi2 the best single leaves (pair_stop; a stopped scanned fit is then fitted from the sum).
 /// A pair's refit runs in the pair's own job, right after its scanned fit (PairOutcome): as two stages, the refits
 /// waited for the slowest scanned pair (docs/physics.md 9.32).
-std::vector<CandidateFit> fit_pairs(const CandidateJobs& c, const std::vector<CandidateFit>& fits,
-                                    const std::vector<std::size_t>& top, std::ostream& log) {
+///
+/// The rounds of the continued best single are fitted beside the pairs, as one more job of the stage, when it would be
+/// fitted on if named alone (rounds_ahead_worth; RoundsAhead), and only when there are pairs to fit beside.
+PairStage fit_pairs(const CandidateJobs& c, const std::vector<CandidateFit>& fits, const std::vector<std::size_t>& top,
+                    const std::optional<Continuation>& more, std::ostream& log) {
   const bool joint = c.options.joint_base && c.base_ref();
   const CandidateFit* best = top.empty() ? nullptr : &fits[top.front()];
   const EarlyStop stop = best ? pair_stop(c.options, best->chi2) : EarlyStop{};
-  std::vector<std::function<PairOutcome()>> jobs;
+  using Outcome = std::variant<PairOutcome, RoundsAhead>;
+  std::vector<std::function<Outcome()>> jobs;
   std::vector<double> expected_seconds;  // a pair costs about what its two singles cost together
   for (std::size_t b = 1; b < top.size(); ++b) {
     expected_seconds.push_back(best->seconds + fits[top[b]].seconds);
     std::vector<material::EffectSpec> effects = best->effects;
     effects.push_back(fits[top[b]].effects.front());
     if (joint)
-      jobs.push_back([&c, best, effects, stop] { return fit_joint_pair(c, *best, effects, stop); });
+      jobs.push_back([&c, best, effects, stop] { return Outcome{fit_joint_pair(c, *best, effects, stop)}; });
     else
       jobs.push_back([job = c.job(effects, Scan::none, false)] {
         PairOutcome out;
         out.kept = job();
-        return out;
+        return Outcome{std::move(out)};
       });
   }
-  std::vector<PairOutcome> outcomes = run_all(jobs, c.options.threads, expected_seconds, &c.spare);
-  std::vector<CandidateFit> pairs;
-  for (PairOutcome& o : outcomes) {
-    log << o.refit_log;
-    pairs.push_back(std::move(o.kept));
+  if (!jobs.empty() && rounds_ahead_worth(more, c.options)) {
+    jobs.push_back([rounds = rounds_ahead_job(c, *more)] { return Outcome{rounds()}; });
+    // Started first: up to continuation_rounds - 1 fits one after another, each about a pair's cost.
+    expected_seconds.push_back(std::numeric_limits<double>::infinity());
   }
-  for (const auto& f : pairs) log_fit(log, f, false);
-  return pairs;
+  std::vector<Outcome> outcomes = run_all(jobs, c.options.threads, expected_seconds, &c.spare);
+  PairStage stage;
+  for (Outcome& o : outcomes) {
+    if (RoundsAhead* r = std::get_if<RoundsAhead>(&o)) {
+      stage.rounds = std::move(*r);
+      continue;
+    }
+    PairOutcome& pair = std::get<PairOutcome>(o);
+    log << pair.refit_log;
+    stage.pairs.push_back(std::move(pair.kept));
+  }
+  for (const auto& f : stage.pairs) log_fit(log, f, false);
+  return stage;
 }
 
 /// The base-refit reference converged and brings every test to the noise level: nothing is left for an effect.
@@ -1344,114 +1532,6 @@ double polished_base_gain(const Diagnosis& d) {
   const double gain = base_gain(d);
   const auto& p = d.polished_base_refit;
   return p && p->converged ? std::max(gain, p->delta_bic) : gain;
-}
-
-/// The parameters of `effects` the catalogue fits in the polish only (EffectParameterInfo::polished_only), "kind name"
-/// each, comma-separated; empty when none.
-std::string polished_only_names(const std::vector<material::EffectSpec>& effects) {
-  std::string names;
-  for (const auto& e : effects)
-    for (const auto& p : material::find_effect(e.kind)->parameters)
-      if (p.polished_only) names += (names.empty() ? "" : ", ") + e.kind + " " + p.name;
-  return names;
-}
-
-/// The freedoms of the polish (step 2b): `o` with every Prony time and hyperfoam exponent free too, within
-/// o.polish_bounds.
-DiagnoseOptions polish_freedoms(const DiagnoseOptions& o) {
-  DiagnoseOptions free_all = o;
-  free_all.base_times = free_all.base_exponents = true;
-  free_all.base_bounds = o.polish_bounds;
-  return free_all;
-}
-
-/// The polish of one single (or of the base refit): refitted from its fit with the freedoms of `free_all`.
-CandidateFit polish_single(const CandidateFit& f, const CandidateJobs& c, const DiagnoseOptions& free_all) {
-  return refit_with_more_free(f, c.campaign, c.d.noise, c.d.residuals, c.d.baseline_bic, free_all, &c.spare);
-}
-
-/// One more run of the polished single `from` from where it ended, with the freedoms of `more`: the new fit when it
-/// converged at a lower BIC, with from's polish bookkeeping (and support) carried over, else nothing; its runs and time
-/// are charged to `from` either way. `what` and `kept_note` word the log line.
-std::optional<CandidateFit> fit_on(CandidateFit& from, const CandidateJobs& c, const DiagnoseOptions& more,
-                                   const std::string& what, const std::string& kept_note, std::ostream& log) {
-  const std::vector<std::function<CandidateFit()>> job{[&c, &from, more] { return polish_single(from, c, more); }};
-  CandidateFit q = run_all(job, c.options.threads, {}, &c.spare).front();
-  const bool kept = q.converged && q.bic < from.bic;
-  log << "diagnose: " << from.name() << what << ": dBIC " << fmt(from.delta_bic, 4) << " -> " << fmt(q.delta_bic, 4)
-      << ", " << q.evaluations - from.evaluations << " runs, " << fmt(q.seconds - from.seconds, 2) << " s"
-      << (kept          ? kept_note
-          : q.converged ? " (not kept: no lower BIC)"
-                        : " (failed, not kept: " + q.message + ")")
-      << "\n";
-  from.evaluations = q.evaluations;  // the run's model runs and time count, kept or not
-  from.seconds = q.seconds;
-  if (!kept) return std::nullopt;
-  q.polished = true;
-  q.supported = from.supported;
-  q.support_note = from.support_note;
-  q.challenger = from.challenger;
-  q.polish_added = from.polish_added + (q.parameters - from.parameters);
-  q.delta_bic_unpolished = from.delta_bic_unpolished;
-  return q;
-}
-
-/// Step 2b, continued (DiagnoseOptions::fit_polished_only, continue_unfinished_polish): the best single after the
-/// polish, when it was polished and its effect has polished_only parameters (mullins beta) or its polish stopped at the
-/// iteration limit with a test beyond noise, fitted once more from its polished fit with those parameters free too;
-/// returned when its BIC is lower (the pairs still start from and are judged against the polished fit:
-/// rank_candidates). The continuation starts where the polish ended (no dead Prony term revived from a fitted point:
-/// with_dead_prony_terms_revived), so it can only lower the chi2: freed together
-/// with the Prony times and exponents from the single's fit, beta took two Ogden-Roxburgh campaigns to worse minima
-/// than the polish with beta held (docs/physics.md 9.41). Only the best single: it refines the family the singles
-/// rank first and does not re-rank the families, since a freedom only one family gets tips near ties (the in-repository
-/// Bouc-Wen friction: Mullins polished 3138, with beta 3353, past friction's 3292; docs/physics.md 9.42).
-std::optional<Continuation> continue_best_single(const CandidateJobs& c, std::vector<CandidateFit>& fits,
-                                                 std::ostream& log) {
-  const DiagnoseOptions& o = c.options;
-  const std::vector<std::size_t> order = best_first(fits);
-  if (order.empty()) return std::nullopt;
-  CandidateFit& best = fits[order.front()];
-  const std::string names = o.fit_polished_only ? polished_only_names(best.effects) : "";
-  const bool unfinished = o.continue_unfinished_polish && best.at_iteration_limit &&
-                          !best.compare.at_noise_level(o.compare.noise_level_ratio);
-  if (!best.converged || !best.polished || (names.empty() && !unfinished)) return std::nullopt;
-  DiagnoseOptions more = polish_freedoms(o);
-  more.polishing = !names.empty();  // beta free only where fit_polished_only asks for it
-  std::optional<CandidateFit> q = fit_on(
-      best, c, more,
-      " continued from its polish" + (names.empty() ? std::string(" (stopped by the iteration limit beyond noise)")
-                                                    : " with " + names + " free too"),
-      " (ranks the single; its pairs start from the polish)", log);
-  if (!q) return std::nullopt;
-  return Continuation{order.front(), std::move(*q)};
-}
-
-/// Step 4b (DiagnoseOptions::continuation_rounds): a single named alone whose continuation (continue_best_single) was
-/// kept and still stopped at max_iterations with a test beyond noise is fitted on from there with the continuation's
-/// freedoms, up to continuation_rounds - 1 rounds of max_iterations, while each lowers the BIC by at least
-/// strong_evidence (a continuation not kept would only be repeated). Every candidate was ranked at the same budget;
-/// this only takes the named model to where its fit ends, for its parameters and its error after (seed-2026 c059,
-/// Ogden-Roxburgh: 3.83 -> 1.31x noise; docs/physics.md 9.45). It runs after the ranking so that it cannot rank a
-/// single above a pair fitted at the budget of the others (seed-2026 c055's friction + Mullins fell below Mullins
-/// fitted for three rounds).
-void refine_named_single(const CandidateJobs& c, bool continued, Diagnosis& d, std::ostream& log) {
-  const DiagnoseOptions& o = c.options;
-  if (!continued || !o.continue_unfinished_polish || d.candidates.empty()) return;
-  CandidateFit& named = d.candidates.front();
-  if (!named.supported || named.kinds.size() != 1 || !named.polished) return;
-  DiagnoseOptions more = polish_freedoms(o);
-  more.polishing = o.fit_polished_only && !polished_only_names(named.effects).empty();
-  for (int round = 2; round <= o.continuation_rounds; ++round) {
-    if (!named.at_iteration_limit || named.compare.at_noise_level(o.compare.noise_level_ratio)) return;
-    const std::string what =
-        ", named, fitted on (round " + std::to_string(round) + " of " + std::to_string(o.continuation_rounds) + ")";
-    std::optional<CandidateFit> q = fit_on(named, c, more, what, "", log);
-    if (!q) return;
-    const bool small_gain = named.bic - q->bic < o.strong_evidence;
-    named = std::move(*q);
-    if (small_gain) return;
-  }
 }
 
 /// Step 2b: the options.polished_singles best singles that beat the reference by strong_evidence (leaders) and, when
@@ -1936,9 +2016,9 @@ Diagnosis diagnose(const material::MaterialSpec& baseline, const Campaign& campa
     std::optional<Continuation> more = continue_best_single(jobs, singles, log);
     const bool continued = more.has_value();
     const std::vector<std::size_t> top = pair_sources(singles, more, options);
-    std::vector<CandidateFit> pairs = fit_pairs(jobs, singles, top, log);
-    rank_candidates(std::move(singles), std::move(pairs), top, std::move(more), options, d);
-    refine_named_single(jobs, continued, d, log);
+    PairStage stage = fit_pairs(jobs, singles, top, more, log);
+    rank_candidates(std::move(singles), std::move(stage.pairs), top, std::move(more), options, d);
+    refine_named_single(jobs, continued, std::move(stage.rounds), d, log);
     confirm_out_of_sample(jobs, d, log);
     if (!d.candidates.empty() && d.candidates.front().supported) {
       winner_verdict(baseline, options, d);

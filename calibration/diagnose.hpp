@@ -60,7 +60,8 @@
 ///     evidence of a missing effect. A pair is preferred to the best single only when its dBIC exceeds the
 ///     single's by strong_evidence too. Then (options.continuation_rounds) a single ranked first alone whose fit still
 ///     stopped at max_iterations with a test beyond noise is fitted on from there: its parameters and error after,
-///     not the ranking (docs/physics.md 9.45).
+///     not the ranking (docs/physics.md 9.45); fitted ahead beside the pairs when there are pairs, and used only
+///     when the ranking names that single alone (the same result, less wall time: docs/physics.md 9.46).
 ///  5. Verdict: the best supported candidate, its error per test and region after the refit, whether
 ///     every test then lies at the noise level, the evidence in words (data signatures: rate dependence
 ///     of the hysteresis, loading vs unloading, phase and modulus error vs frequency, preload dependence
@@ -215,7 +216,8 @@ struct DiagnoseOptions {
   /// Step 4b: a single named alone (after the ranking) whose continuation above was kept and still stopped at
   /// max_iterations with a test beyond noise is fitted on from there with the continuation's freedoms, in at most continuation_rounds - 1 more rounds of
   /// max_iterations, each only while the one before lowered the BIC by at least strong_evidence: the named model's
-  /// parameters and error after, not the ranking (docs/physics.md 9.45). 1: none.
+  /// parameters and error after, not the ranking (docs/physics.md 9.45; the rounds are fitted beside the pairs and
+  /// used when the ranking names that single alone, 9.46). 1: none.
   int continuation_rounds = 3;
   /// Set for the continuation above, not by users: the polished_only parameters are fitted too.
   bool polishing = false;
