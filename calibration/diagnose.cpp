@@ -1222,6 +1222,13 @@ bool stopped_beyond_noise(const CandidateFit& f, const DiagnoseOptions& o) {
   return f.at_iteration_limit && !f.compare.at_noise_level(o.compare.noise_level_ratio);
 }
 
+/// The ranking's judgement of a single (supported, its note, challenger), carried from `from` to a refit of it.
+void carry_support(CandidateFit& to, const CandidateFit& from) {
+  to.supported = from.supported;
+  to.support_note = from.support_note;
+  to.challenger = from.challenger;
+}
+
 /// Where a fit runs: alone in its stage (run_all of the one job: the idle thread lends its core to the fit's
 /// Jacobian), or as one job of a stage that runs others (it borrows only the cores their threads lend).
 enum class Stage { alone, beside_others };
@@ -1246,9 +1253,7 @@ std::optional<CandidateFit> fit_on(CandidateFit& from, const CandidateJobs& c, c
   from.seconds = q.seconds;
   if (!kept) return std::nullopt;
   q.polished = true;
-  q.supported = from.supported;
-  q.support_note = from.support_note;
-  q.challenger = from.challenger;
+  carry_support(q, from);
   q.polish_added = from.polish_added + (q.parameters - from.parameters);
   q.delta_bic_unpolished = from.delta_bic_unpolished;
   return q;
@@ -1320,11 +1325,17 @@ struct RoundsAhead {
   }
 };
 
+/// A single of the kind refine_named_single fits on in rounds when named alone: polished, one effect, the
+/// continuations on.
+bool fitted_on_when_named(const CandidateFit& f, const DiagnoseOptions& o) {
+  return o.continue_unfinished_polish && f.kinds.size() == 1 && f.polished;
+}
+
 /// Whether the continuation `more` would be fitted on in rounds if named alone (refine_named_single), and on more than
 /// one thread, so that fitting them ahead can overlap the pairs (on one it would only add their time when unused).
 bool rounds_ahead_worth(const std::optional<Continuation>& more, const DiagnoseOptions& o) {
-  return more && o.threads > 1 && o.continue_unfinished_polish && o.continuation_rounds >= 2 &&
-         more->fit.kinds.size() == 1 && more->fit.polished && stopped_beyond_noise(more->fit, o);
+  return more && o.threads > 1 && o.continuation_rounds >= 2 && fitted_on_when_named(more->fit, o) &&
+         stopped_beyond_noise(more->fit, o);
 }
 
 /// The job of the pair stage that fits the rounds ahead from the continuation `more` (rounds_ahead_worth).
@@ -1348,14 +1359,12 @@ std::function<RoundsAhead()> rounds_ahead_job(const CandidateJobs& c, const Cont
 void refine_named_single(const CandidateJobs& c, bool continued, std::optional<RoundsAhead> ahead, Diagnosis& d,
                          std::ostream& log) {
   const DiagnoseOptions& o = c.options;
-  if (!continued || !o.continue_unfinished_polish || d.candidates.empty()) return;
+  if (!continued || d.candidates.empty()) return;
   CandidateFit& named = d.candidates.front();
-  if (!named.supported || named.kinds.size() != 1 || !named.polished) return;
+  if (!named.supported || !fitted_on_when_named(named, o)) return;
   if (!ahead || !ahead->starts_from(named)) return fit_in_rounds(named, c, Stage::alone, log);
-  CandidateFit& end = ahead->end;  // its support as the ranking judged the single (fit_on carries it over)
-  end.supported = named.supported;
-  end.support_note = named.support_note;
-  end.challenger = named.challenger;
+  CandidateFit& end = ahead->end;
+  carry_support(end, named);  // as the ranking judged the single, as fit_on carries it in the serial rounds
   named = std::move(end);
   log << ahead->log;
 }

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -70,14 +69,14 @@ PointResponse StiffnessDampingEffect::integrate(const Mat3& F_old, const Mat3& F
   // (Hyperfoam::evaluate) still holds the committed point from the increment before (its inner evaluation at its
   // solution), so C_d costs no hyperfoam evaluation on a path; after the inner call it would hold F_new (the same
   // values either way; docs/physics.md 9.46).
-  const std::optional<Mat6> C_d = dt == 0.0 ? std::nullopt : std::optional<Mat6>(damping_tangent(F_old));
+  const Mat6 C_d = damping_tangent(F_old);
   PointResponse r = integrate_inner(F_old, F_new, dt, state_old, state_new);
   if (r.status == Status::failed) return r;
   if (bank_.branches() == 0) {  // q = 1: the dashpot, no memory
     if (dt == 0.0) return r;
     const Vec6 E_rate = (to_voigt_strain(green_lagrange(F_new)) - to_voigt_strain(green_lagrange(F_old))) / dt;
-    r.S += beta_ * *C_d * E_rate;
-    r.dS_dE += (beta_ / dt) * *C_d;
+    r.S += beta_ * C_d * E_rate;
+    r.dS_dE += (beta_ / dt) * C_d;
     return r;
   }
   // q < 1: the bank's memories of C_d-weighted strain increments (stress-like Voigt) in the own state
@@ -90,10 +89,10 @@ PointResponse StiffnessDampingEffect::integrate(const Mat3& F_old, const Mat3& F
     r.S += coefficient_ * memory_stress;
     return r;
   }
-  const Vec6 dS = *C_d * (to_voigt_strain(green_lagrange(F_new)) - to_voigt_strain(green_lagrange(F_old)));
+  const Vec6 dS = C_d * (to_voigt_strain(green_lagrange(F_new)) - to_voigt_strain(green_lagrange(F_old)));
   bank_.advance(dt, {dS.data(), 6}, old_memory, new_memory, {memory_stress.data(), 6});
   r.S += coefficient_ * (memory_stress + (bank_.dashpot() / dt) * dS);
-  r.dS_dE += (coefficient_ * bank_.increment_weight(dt)) * *C_d;
+  r.dS_dE += (coefficient_ * bank_.increment_weight(dt)) * C_d;
   return r;
 }
 
