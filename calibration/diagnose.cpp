@@ -1,6 +1,7 @@
 #include "calibration/diagnose.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -333,14 +334,19 @@ enum class Scan {
   added_effect,
 };
 
-/// The trial values of a parameter about u (u itself excluded): log-scale ones a decade apart over 3 decades either
-/// side, others u x {0, 0.3, 3, 10}; only values within the bounds.
+/// The trial values of a parameter about u (u itself excluded): log-scale and scan_decades ones a decade apart over 3
+/// decades either side (a scan_decades one at 0, switched off, about its catalogue start), others u x {0, 0.3, 3, 10};
+/// only values within the bounds.
 std::vector<double> scan_values(const FreeParameter& f, double u) {
   std::vector<double> v;
-  if (f.info->log_scale)
+  if (f.info->log_scale) {
     for (int d = -3; d <= 3; ++d) v.push_back(u + d);
-  else
+  } else if (f.info->scan_decades) {
+    const double centre = u > 0.0 ? u : f.to_u(fit_start_of(*f.info));
+    for (int d = -3; d <= 3; ++d) v.push_back(centre * std::pow(10.0, d));
+  } else {
     for (double s : {0.0, 0.3, 3.0, 10.0}) v.push_back(u * s);
+  }
   std::erase_if(v, [&](double t) { return t < f.lower || t > f.upper || t == u; });
   return v;
 }
@@ -475,14 +481,18 @@ std::size_t scan_partner(const CandidateModel& m, std::size_t i) {
   return FreeParameter::npos;
 }
 
-/// Half a decade either side of each of the given effect parameters that is log-scale (in turn, keep_best).
+/// Half a decade either side of each of the given effect parameters that is log-scale or scan_decades (in turn,
+/// keep_best).
 double refine_start(const TrialScore& score, std::vector<double>& u, const std::vector<std::size_t>& effect,
                     double best, SpareCores* spare) {
+  const double half_decade = std::sqrt(10.0);
   for (std::size_t i : effect) {
     const FreeParameter& f = score.model().free()[i];
-    if (!f.info->log_scale) continue;
+    if (!f.info->log_scale && !f.info->scan_decades) continue;
+    const std::array<double, 2> sides =
+        f.info->log_scale ? std::array{u[i] - 0.5, u[i] + 0.5} : std::array{u[i] / half_decade, u[i] * half_decade};
     std::vector<std::vector<double>> trials;
-    for (double t : {u[i] - 0.5, u[i] + 0.5}) {
+    for (double t : sides) {
       if (t < f.lower || t > f.upper) continue;
       trials.push_back(u);
       trials.back()[i] = t;

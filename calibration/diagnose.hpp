@@ -17,8 +17,8 @@
 ///     effect), or with joint_base the effect's parameters and the base-refit factors together (a
 ///     baseline fitted on data that contain the effect). Parameters are fitted as log10(x) when flagged log_scale, else x/default; bounds: the
 ///     catalogue range, and 4 decades either side of the default for log-scale ones. Start: a coarse scan
-///     of the effect's parameters one at a time (log-scale: default x 10^{-3..3}; else default x {0, 0.3, 1, 3, 10}),
-///     then half a decade either side of each log-scale value chosen, a value kept only when it lowers chi2 by 0.1 %
+///     of the effect's parameters one at a time (log-scale and scan_decades: default x 10^{-3..3}; else default x
+///     {0, 0.3, 1, 3, 10}), then half a decade either side of each log-scale or scan_decades value chosen, a value kept only when it lowers chi2 by 0.1 %
 ///     (the base factors start at the reference's fit and are not scanned; with joint_base a single's trials are
 ///     scored by the chi2 left after the best linear step of the base factors, from their residual Jacobian at the
 ///     start, and Levenberg-Marquardt starts from the scan's point with that step where it lowers chi2: an effect

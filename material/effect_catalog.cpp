@@ -158,7 +158,7 @@ const std::vector<Entry>& entries() {
         "elastic tangent C0 (w = 0) or the current one C_e (w = 1); with q < 1 a fractional derivative D^q E in place "
         "of dE/dt",
         {{"beta_s", "beta_s: damping time (the paper's Rayleigh beta = 1e-4 s; at the reference frequency when q < 1)",
-          1e-4, 0.0, 1.0, false, true, false},
+          1e-4, 0.0, 1.0, false, true, false, 0.0, "", std::nullopt, std::nullopt, "", "", false, true},
          {"current_tangent_share", "w: share of the current elastic tangent in the damping stiffness (0: initial)", 0.0,
           0.0, 1.0, false, true, false, 0.5},
          {"derivative_order",

@@ -76,6 +76,12 @@ struct EffectParameterInfo {
   /// `cushion fit` placed is off, but that a fit from the effect's own polished single moves to where the data want it
   /// (mullins beta, docs/physics.md 9.41-9.42). Only with fit false.
   bool polished_only = false;
+  /// A scale that may lie decades from its start but that the stress is linear in (the damping time beta_s): diagnose's
+  /// start scan tries it a decade apart over three decades either side of its start, as a log-scale parameter, while
+  /// Levenberg-Marquardt fits the value itself (fitted in decades too, it ended lower on the five-test campaigns;
+  /// scanned about its start by factors 0-10 only, it could not leave 0 once the scan kept it there; docs/physics.md 9.47).
+  /// Only with log_scale false.
+  bool scan_decades = false;
 };
 
 /// One effect of the catalogue.
