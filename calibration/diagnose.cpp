@@ -1,7 +1,6 @@
 #include "calibration/diagnose.hpp"
 
 #include <algorithm>
-#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -334,16 +333,22 @@ enum class Scan {
   added_effect,
 };
 
+/// Whether the start scan moves parameter f in decades: log-scale (fitted as log10 x) or scan_decades.
+bool scanned_in_decades(const FreeParameter& f) { return f.info->log_scale || f.info->scan_decades; }
+
+/// u moved by d decades: u + d for a log-scale parameter (u = log10 x), u 10^d for a scan_decades one.
+double decades_from(const FreeParameter& f, double u, double d) {
+  return f.info->log_scale ? u + d : u * std::pow(10.0, d);
+}
+
 /// The trial values of a parameter about u (u itself excluded): log-scale and scan_decades ones a decade apart over 3
 /// decades either side (a scan_decades one at 0, switched off, about its catalogue start), others u x {0, 0.3, 3, 10};
 /// only values within the bounds.
 std::vector<double> scan_values(const FreeParameter& f, double u) {
   std::vector<double> v;
-  if (f.info->log_scale) {
-    for (int d = -3; d <= 3; ++d) v.push_back(u + d);
-  } else if (f.info->scan_decades) {
-    const double centre = u > 0.0 ? u : f.to_u(fit_start_of(*f.info));
-    for (int d = -3; d <= 3; ++d) v.push_back(centre * std::pow(10.0, d));
+  if (scanned_in_decades(f)) {
+    const double centre = f.info->scan_decades && u <= 0.0 ? f.to_u(fit_start_of(*f.info)) : u;
+    for (int d = -3; d <= 3; ++d) v.push_back(decades_from(f, centre, d));
   } else {
     for (double s : {0.0, 0.3, 3.0, 10.0}) v.push_back(u * s);
   }
@@ -485,15 +490,12 @@ std::size_t scan_partner(const CandidateModel& m, std::size_t i) {
 /// keep_best).
 double refine_start(const TrialScore& score, std::vector<double>& u, const std::vector<std::size_t>& effect,
                     double best, SpareCores* spare) {
-  const double half_decade = std::sqrt(10.0);
   for (std::size_t i : effect) {
     const FreeParameter& f = score.model().free()[i];
-    if (!f.info->log_scale && !f.info->scan_decades) continue;
-    const std::array<double, 2> sides =
-        f.info->log_scale ? std::array{u[i] - 0.5, u[i] + 0.5} : std::array{u[i] / half_decade, u[i] * half_decade};
+    if (!scanned_in_decades(f)) continue;
     std::vector<std::vector<double>> trials;
-    for (double t : sides) {
-      if (t < f.lower || t > f.upper) continue;
+    for (double t : {decades_from(f, u[i], -0.5), decades_from(f, u[i], 0.5)}) {
+      if (t == u[i] || t < f.lower || t > f.upper) continue;  // t == u: a scan_decades one left at 0
       trials.push_back(u);
       trials.back()[i] = t;
     }
