@@ -1049,7 +1049,10 @@ EarlyStop damage_start_stop(const CandidateJobs& c) {
 }
 
 /// The damage start of a single whose effect has damage parameters (EffectInfo::damage_limit_parameter): d_inf and e_d
-/// estimated from the slowest quasi-static test (logged), and a job that refits the base refit's hyperfoam to the first
+/// estimated from the slowest quasi-static test (logged), the recoverable softening off (EffectInfo::
+/// recoverable_softening_parameter at its maximum: the estimate is that of a damage alone, and from the catalogue's
+/// Ogden-Roxburgh start r = 2 the exponential damage of seed-2026 c000 ended at dBIC 64 against 294 from there,
+/// docs/physics.md 9.48), and a job that refits the base refit's hyperfoam to the first
 /// loadings over 1 - d(e) (calibration/damage_start.hpp; inside the job, so that it runs beside the other singles) and
 /// then fits the single from there with Levenberg-Marquardt (no start scan: the scan of the effect's six parameters
 /// cost about 250 model runs on seed-2027 c017 and c036 and ended no better). None when options.damage_start is off,
@@ -1075,6 +1078,8 @@ std::optional<std::function<CandidateFit()>> damage_start_job(const CandidateJob
   std::vector<material::EffectSpec> start = single;
   start[0].parameters[info->damage_limit_parameter] = std::max(damage->limit, 0.01);  // 0 would hold the branch off
   start[0].parameters[info->damage_strain_parameter] = damage->strain;
+  for (const material::EffectParameterInfo& p : info->parameters)  // the recoverable softening off: all is damage
+    if (p.name == info->recoverable_softening_parameter) start[0].parameters[p.name] = p.max;
   return [&c, start = std::move(start), damage = *damage] {
     const std::optional<material::MaterialSpec> base =
         damaged_loading_base(c.d.base_refit->fitted, c.campaign, c.d.noise, damage);
@@ -1158,6 +1163,32 @@ std::vector<std::size_t> best_first(const std::vector<CandidateFit>& fits) {
   return order;
 }
 
+/// `order` (indices into `fits`, ranked best first) with the challengers ranked before the best leader (a converged
+/// single polished because it was supported before its polish) that do not beat it by `margin` moved to just after
+/// it, the rest in order: a near miss polished only because a leader was must beat that leader by the evidence
+/// threshold to rank ahead of it; within that it is the leader's equal (the rival of the verdict, find_rival), not its
+/// successor (docs/physics.md 9.48). Returns the leader's index when a challenger was moved, else nothing.
+std::optional<std::size_t> put_leader_ahead(std::vector<std::size_t>& order, const std::vector<CandidateFit>& fits,
+                                            double margin) {
+  const auto leader = std::find_if(order.begin(), order.end(), [&](std::size_t i) {
+    return fits[i].converged && fits[i].polished && !fits[i].challenger && fits[i].kinds.size() == 1;
+  });
+  if (leader == order.end()) return std::nullopt;
+  const std::size_t l = *leader;
+  auto near = [&](std::size_t i) { return fits[i].challenger && fits[i].delta_bic <= fits[l].delta_bic + margin; };
+  if (std::none_of(order.begin(), leader, near)) return std::nullopt;
+  std::stable_partition(order.begin(), leader + 1, [&](std::size_t i) { return !near(i); });
+  return l;
+}
+
+/// Indices of the singles `fits`, best first: by dBIC, the challengers that do not beat the best leader by
+/// strong_evidence after it (put_leader_ahead).
+std::vector<std::size_t> singles_best_first(const std::vector<CandidateFit>& fits, const DiagnoseOptions& options) {
+  std::vector<std::size_t> order = best_first(fits);
+  put_leader_ahead(order, fits, options.strong_evidence);
+  return order;
+}
+
 /// The best single's continuation (fit_polished_only, continue_unfinished_polish): `fit`, the single `single` (index
 /// into the singles) fitted once more from its polished fit, with its polished_only parameters free too where it has
 /// them.
@@ -1174,7 +1205,7 @@ struct Continuation {
 /// (docs/physics.md 9.15). The best single's continuation (fit_polished_only) at the noise level counts as well.
 std::vector<std::size_t> pair_sources(const std::vector<CandidateFit>& fits, const std::optional<Continuation>& more,
                                       const DiagnoseOptions& options) {
-  const std::vector<std::size_t> order = best_first(fits);
+  const std::vector<std::size_t> order = singles_best_first(fits, options);
   std::vector<std::size_t> top;
   auto at_noise = [&](const CandidateFit& f) {
     return f.converged && f.compare.at_noise_level(options.compare.noise_level_ratio);
@@ -1284,7 +1315,7 @@ std::optional<CandidateFit> fit_on(CandidateFit& from, const CandidateJobs& c, c
 std::optional<Continuation> continue_best_single(const CandidateJobs& c, std::vector<CandidateFit>& fits,
                                                  std::ostream& log) {
   const DiagnoseOptions& o = c.options;
-  const std::vector<std::size_t> order = best_first(fits);
+  const std::vector<std::size_t> order = singles_best_first(fits, o);
   if (order.empty()) return std::nullopt;
   CandidateFit& best = fits[order.front()];
   const std::string names = o.fit_polished_only ? polished_only_names(best.effects) : "";
@@ -1621,6 +1652,24 @@ std::optional<CandidateFit> polish_leading_singles(const CandidateJobs& c, std::
   return polished_reference;
 }
 
+/// `ranked` (supported first, then by dBIC) with the supported challengers that do not beat the best leader by
+/// `margin` ranked after it (put_leader_ahead), each saying so.
+void rank_leader_ahead(std::vector<CandidateFit>& ranked, double margin) {
+  std::vector<std::size_t> order(ranked.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  const std::optional<std::size_t> leader = put_leader_ahead(order, ranked, margin);
+  if (!leader) return;
+  const std::string note = "ranked after " + ranked[*leader].name() +
+                           ": a challenger must beat the leader by the evidence threshold, dBIC " + fmt(margin);
+  std::vector<CandidateFit> reordered;
+  for (std::size_t i : order) {
+    if (ranked[i].challenger && i < *leader && ranked[i].delta_bic <= ranked[*leader].delta_bic + margin)
+      ranked[i].support_note = note;
+    reordered.push_back(std::move(ranked[i]));
+  }
+  ranked = std::move(reordered);
+}
+
 /// Ranking: a single is supported when it beats the reference by strong_evidence, a pair when it beats the
 /// best single and the reference by strong_evidence and explains pair_share of the chi2 the best single leaves, none
 /// when the reference alone brings every test to the noise level; supported first, then by dBIC; warnings for failed or
@@ -1656,6 +1705,7 @@ void rank_candidates(std::vector<CandidateFit> fits, std::vector<CandidateFit> p
     if (a.supported != b.supported) return a.supported;
     return a.delta_bic > b.delta_bic;
   });
+  rank_leader_ahead(d.candidates, options.strong_evidence);
 }
 
 /// A campaign reduced to some of its material-level tests (index order: quasi-static, then dynamic) with

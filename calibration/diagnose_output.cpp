@@ -163,7 +163,7 @@ nlohmann::json diagnosis_json(const Diagnosis& d) {
                       {"evaluations", c.evaluations},
                       {"seconds", c.seconds},
                       {"effects", effects_json(c.effects)}};
-    jc["support_note"] = c.support_note;  // why a converged candidate whose dBIC passes is not supported, else ""
+    jc["support_note"] = c.support_note;  // why a passing candidate is not supported or ranked lower, else ""
     jc["polished"] = c.polished;  // step 2b: refitted with the base's Prony times and hyperfoam exponents free too
     jc["challenger"] = c.challenger;  // a near miss polished (--polish-challengers): judged against polished_base_refit
     if (c.polished && std::isfinite(c.delta_bic_unpolished)) jc["delta_bic_unpolished"] = c.delta_bic_unpolished;
@@ -232,8 +232,8 @@ std::string diagnosis_markdown(const Diagnosis& d) {
                                                : d.polished_base_refit->message);
     for (std::size_t i = 0; i < d.candidates.size(); ++i) {
       const CandidateFit& c = d.candidates[i];
-      std::string status = c.supported              ? "supported"
-                           : !c.converged           ? c.message
+      std::string status = c.supported    ? "supported" + (c.support_note.empty() ? "" : " (" + c.support_note + ")")
+                           : !c.converged ? c.message
                            : c.support_note.empty() ? "not supported"
                                                     : "not supported (" + c.support_note + ")";
       if (c.polished)

@@ -122,7 +122,8 @@ const std::vector<Entry>& entries() {
         true,
         "relaxation_share",
         "damage_limit",
-        "damage_strain"},
+        "damage_strain",
+        "r"},
        [](const BuildContext& c) -> std::shared_ptr<const Material> {
          MullinsParameters p;
          p.r = c.value.at("r");

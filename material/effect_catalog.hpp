@@ -100,6 +100,10 @@ struct EffectInfo {
   /// both estimated from a quasi-static test's loading and unloading and the base's hyperfoam refitted to the first
   /// loadings over 1 - d(e) (calibration/damage_start.hpp). Empty: none.
   std::string damage_limit_parameter{}, damage_strain_parameter{};
+  /// A parameter at whose maximum the effect's recoverable softening is off (mullins r: the Ogden-Roxburgh factor
+  /// 1 - erf(...)/r within 0.1 % of 1 at r = 1e3): the damage start above holds it there, since its estimate of d_inf
+  /// and e_d reads the whole drop of the unloading below the loading as damage (docs/physics.md 9.48). Empty: none.
+  std::string recoverable_softening_parameter{};
 };
 
 /// Every effect, in a fixed order.

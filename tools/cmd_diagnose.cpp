@@ -122,9 +122,10 @@ const cushion::tools::Registrar reg{"diagnose", [](CLI::App& app) {
   sub->add_option(
          "--polish-challengers", opt->options.polished_challengers,
          "when a single is supported, polish also the N best near misses (singles above the base refit's "
-         "dBIC but not by 10) and the base refit, and judge them against that polished refit (default " +
+         "dBIC but not by 10) and the base refit, and judge them against that polished refit; one ranks ahead of the "
+         "leader only when it beats it by dBIC 10, else it is named as the leader's equal (default " +
              std::to_string(cushion::calibration::DiagnoseOptions{}.polished_challengers) +
-             "; 0: off; measured: one verdict more right and three fewer on four benchmark sets, docs/physics.md 9.29)")
+             "; 0: off; docs/physics.md 9.29, 9.48)")
       ->check(CLI::Range(0, 4));
   sub->add_option(
          "--pair-share", opt->options.pair_share,

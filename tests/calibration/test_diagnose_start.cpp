@@ -270,29 +270,45 @@ TEST(DiagnoseStart, LinearPerTermStrainDependentPronyIsRankedFirstOnceTheLeaders
   fs::remove_all(c.set);
 }
 
-// A challenger polished against a reference polished alike (diagnose --polish-challengers, off by default). Campaign c021 of
-// the seed-2026 scale set (a set this was not tuned on): an exponential strain-dependent Prony factor
-// a_j exp(k e) on a random foam, small next to the noise (the fitted base leaves it at 1.9x). Before the polish friction
-// (dBIC 25.1) and air flow (18.2) beat the base refit (-41.9) and strain-dependent Prony does not (-3.4): friction was
-// named (2026-12-05 benchmark). With its base's Prony times and exponents free, strain-dependent Prony reaches dBIC 141
-// against the base refit polished alike at -86 and friction polished at 136, and brings every test within 1.05x noise
-// (measured 2026-12-05, docs/physics.md 9.29). Off (the default), friction is named.
-TEST(DiagnoseStart, ExponentialStrainDependentPronyWinsAsAChallengerPolishedAgainstAPolishedReference) {
+// A challenger polished against a reference polished alike (diagnose --polish-challengers, default 1), ranked after
+// the leader it does not beat by the evidence threshold. Campaign c021 of the seed-2026 scale set (a set this was not
+// tuned on): an exponential strain-dependent Prony factor a_j exp(k e) on a random foam, small next to the noise (the
+// fitted base leaves it at 1.9x). Before the polish friction (dBIC 25.1) and air flow (18.2) beat the base refit
+// (-41.9) and strain-dependent Prony does not (-3.4). With its base's Prony times and exponents free, strain-dependent
+// Prony reaches dBIC 141 against the base refit polished alike at -86 and friction polished at 136, and brings every
+// test within 1.05x noise (docs/physics.md 9.29). Ranked by dBIC alone that named it; but such near ties went the wrong
+// way as often (9.29, 9.48), so a challenger within dBIC 10 of the leader is ranked after it, and the verdict names it
+// as the equal rival with the test that would separate the two. Without challengers (0) nothing says that the true
+// family explains the data as well.
+TEST(DiagnoseStart, ANearMissPolishedAsAChallengerIsTheLeadersEqualNotItsSuccessor) {
   const BenchCampaign c = bench_campaign("diagnose_sdprony_challenger", "c021", "--base-refit scale", 2026);
   ASSERT_EQ(c.truth.at("forms").at(0).get<std::string>(), "exponential") << "the generator's mix changed";
   const std::string candidates = "--candidates strain_dependent_prony,friction,pneumatic";
 
-  const nlohmann::json d = cushion::foreign_program::diagnose_raw(c.dir, candidates + " --polish-challengers 1");
-  ASSERT_EQ(d.at("winner"), "strain_dependent_prony") << d.at("verdict");
-  const nlohmann::json& w = d.at("candidates").at(0);
-  EXPECT_TRUE(w.at("challenger").get<bool>());
-  EXPECT_GT(w.at("delta_bic").get<double>(), d.at("polished_base_refit").at("delta_bic").get<double>() + 10.0);
-  for (const auto& t : w.at("compare").at("tests"))
+  const nlohmann::json d = cushion::foreign_program::diagnose_raw(c.dir, candidates);
+  ASSERT_EQ(d.at("winner"), "friction") << d.at("verdict");
+  const nlohmann::json& sdp = d.at("candidates").at(1);
+  ASSERT_EQ(sdp.at("name"), "strain_dependent_prony");
+  EXPECT_TRUE(sdp.at("challenger").get<bool>());
+  EXPECT_TRUE(sdp.at("supported").get<bool>());
+  EXPECT_NE(sdp.at("support_note").get<std::string>().find("ranked after friction"), std::string::npos);
+  const double leader = d.at("candidates").at(0).at("delta_bic").get<double>();
+  EXPECT_GT(sdp.at("delta_bic").get<double>(), leader);  // ahead by dBIC, within the threshold
+  EXPECT_LE(sdp.at("delta_bic").get<double>(), leader + 10.0);
+  EXPECT_GT(sdp.at("delta_bic").get<double>(), d.at("polished_base_refit").at("delta_bic").get<double>() + 10.0);
+  for (const auto& t : sdp.at("compare").at("tests"))
     EXPECT_LT(t.at("error_over_noise").get<double>(), 1.5) << t.at("name");
+  ASSERT_TRUE(d.at("rival").is_object()) << d.at("verdict");
+  EXPECT_EQ(d.at("rival").at("name"), "strain_dependent_prony");
+  EXPECT_NE(d.at("verdict").get<std::string>().find("cannot tell friction from strain_dependent_prony"),
+            std::string::npos)
+      << d.at("verdict");
 
-  const nlohmann::json off = cushion::foreign_program::diagnose_raw(c.dir, candidates, "off");
+  const nlohmann::json off =
+      cushion::foreign_program::diagnose_raw(c.dir, candidates + " --polish-challengers 0", "off");
   EXPECT_EQ(off.at("winner"), "friction") << off.at("verdict");
   EXPECT_FALSE(off.contains("polished_base_refit"));
+  EXPECT_FALSE(off.at("rival").is_object() && off.at("rival").at("name") == "strain_dependent_prony");
   fs::remove_all(c.set);
 }
 
@@ -449,6 +465,28 @@ TEST(DiagnoseStart, ExponentialDamageFarBeyondTheNoiseIsNamedMullinsFromItsDamag
   for (const auto& t : beta.at("candidates").at(0).at("compare").at("tests"))
     EXPECT_LT(t.at("error_over_noise").get<double>(), 1.5) << t.at("name");
   EXPECT_EQ(beta.at("verdict").get<std::string>().find("--polish-"), std::string::npos) << beta.at("verdict");
+  fs::remove_all(c.set);
+}
+
+// The damage start with the recoverable softening off (EffectInfo::recoverable_softening_parameter, docs/physics.md
+// 9.48). Campaign c000 of the seed-2026 scale set: an exponential damage d = d_inf (1 - exp(-e/e_d)) alone (d_inf
+// 0.133, e_d 0.222; the Ogden-Roxburgh factor off), near the noise (the fitted base leaves 1.65x). The damage start's
+// estimate (d_inf 0.06, e_d 0.115 from the slowest test's unloading over loading) is that of a damage alone; started
+// beside the catalogue's Ogden-Roxburgh r = 2 it ended at dBIC 64 and friction was named (277.6); with r at its maximum
+// the single reaches 294 (308 polished), d_inf 0.135 and e_d 0.208, every test within 1.06x noise.
+TEST(DiagnoseStart, AWeakExponentialDamageIsNamedMullinsFromADamageStartWithoutRecoverableSoftening) {
+  const BenchCampaign c = bench_campaign("diagnose_pure_damage", "c000", "--base-refit scale", 2026);
+  ASSERT_EQ(c.truth.at("forms").at(0).get<std::string>(), "exponential_damage") << "the generator's mix changed";
+  const nlohmann::json& truth = c.truth.at("parameters").at("mullins");
+
+  const nlohmann::json d = cushion::foreign_program::diagnose_raw(c.dir, "--candidates mullins,friction");
+  ASSERT_EQ(d.at("winner").get<std::string>(), "mullins") << d.at("verdict");
+  const nlohmann::json& mullins = mullins_in_fragment(d);
+  EXPECT_NEAR(mullins.at("damage_limit").get<double>(), truth.at("damage_limit").get<double>(), 0.02);
+  EXPECT_NEAR(mullins.at("damage_strain").get<double>() / truth.at("damage_strain").get<double>(), 1.0, 0.15);
+  EXPECT_GT(mullins.at("r").get<double>(), 100.0);  // the recoverable softening below 1 %, as the truth's
+  for (const auto& t : d.at("candidates").at(0).at("compare").at("tests"))
+    EXPECT_LT(t.at("error_over_noise").get<double>(), 1.5) << t.at("name");
   fs::remove_all(c.set);
 }
 

@@ -43,13 +43,16 @@ TEST(EffectCatalog, EveryEntryIsSelfDescribing) {
     EXPECT_FALSE(e.description.empty()) << e.kind;
     EXPECT_FALSE(e.parameters.empty()) << e.kind;
     EXPECT_EQ(find_effect(e.kind), &e);
-    // damage parameters: both or neither, each a parameter of the effect
+    // damage parameters: both or neither, each a parameter of the effect; a recoverable softening only beside them
     EXPECT_EQ(e.damage_limit_parameter.empty(), e.damage_strain_parameter.empty()) << e.kind;
-    for (const std::string& name : {e.damage_limit_parameter, e.damage_strain_parameter})
-      if (!name.empty())
+    EXPECT_TRUE(e.recoverable_softening_parameter.empty() || !e.damage_limit_parameter.empty()) << e.kind;
+    for (const std::string& name :
+         {e.damage_limit_parameter, e.damage_strain_parameter, e.recoverable_softening_parameter})
+      if (!name.empty()) {
         EXPECT_TRUE(
             std::any_of(e.parameters.begin(), e.parameters.end(), [&](const auto& p) { return p.name == name; }))
             << e.kind << ": " << name;
+      }
     for (const EffectParameterInfo& p : e.parameters) {
       EXPECT_TRUE(p.min_exclusive ? p.default_value > p.min : p.default_value >= p.min) << p.name;
       EXPECT_LE(p.default_value, p.max) << p.name;
@@ -70,7 +73,9 @@ TEST(EffectCatalog, EveryEntryIsSelfDescribing) {
         EXPECT_LE(*p.diagnose_value, p.max) << p.name;
         EXPECT_NE(*p.diagnose_value, p.default_value) << p.name;
       }
-      if (p.polished_only) EXPECT_FALSE(p.fit) << p.name;  // held by the singles, fitted in the polish only
+      if (p.polished_only) {
+        EXPECT_FALSE(p.fit) << p.name;  // held by the singles, fitted in the polish only
+      }
       if (!p.scan_with.empty()) {  // a fitted partner of the same effect, not the parameter itself
         EXPECT_TRUE(p.fit) << p.name;
         EXPECT_NE(p.scan_with, p.name);
