@@ -1163,22 +1163,31 @@ std::vector<std::size_t> best_first(const std::vector<CandidateFit>& fits) {
   return order;
 }
 
+/// The best leader and the challengers put_leader_ahead ranked after it.
+struct LeaderAhead {
+  std::size_t leader = 0;           ///< index into the fits
+  std::vector<std::size_t> behind;  ///< the challengers moved after it, indices into the fits
+};
+
 /// `order` (indices into `fits`, ranked best first) with the challengers ranked before the best leader (a converged
 /// single polished because it was supported before its polish) that do not beat it by `margin` moved to just after
 /// it, the rest in order: a near miss polished only because a leader was must beat that leader by the evidence
 /// threshold to rank ahead of it; within that it is the leader's equal (the rival of the verdict, find_rival), not its
-/// successor (docs/physics.md 9.48). Returns the leader's index when a challenger was moved, else nothing.
-std::optional<std::size_t> put_leader_ahead(std::vector<std::size_t>& order, const std::vector<CandidateFit>& fits,
+/// successor (docs/physics.md 9.48). Returns the leader and the challengers moved, nothing when none was.
+std::optional<LeaderAhead> put_leader_ahead(std::vector<std::size_t>& order, const std::vector<CandidateFit>& fits,
                                             double margin) {
   const auto leader = std::find_if(order.begin(), order.end(), [&](std::size_t i) {
     return fits[i].converged && fits[i].polished && !fits[i].challenger && fits[i].kinds.size() == 1;
   });
   if (leader == order.end()) return std::nullopt;
-  const std::size_t l = *leader;
-  auto near = [&](std::size_t i) { return fits[i].challenger && fits[i].delta_bic <= fits[l].delta_bic + margin; };
-  if (std::none_of(order.begin(), leader, near)) return std::nullopt;
-  std::stable_partition(order.begin(), leader + 1, [&](std::size_t i) { return !near(i); });
-  return l;
+  LeaderAhead moved{*leader, {}};
+  for (auto i = order.begin(); i != leader; ++i)
+    if (fits[*i].challenger && fits[*i].delta_bic <= fits[moved.leader].delta_bic + margin) moved.behind.push_back(*i);
+  if (moved.behind.empty()) return std::nullopt;
+  std::stable_partition(order.begin(), leader + 1, [&](std::size_t i) {
+    return std::find(moved.behind.begin(), moved.behind.end(), i) == moved.behind.end();
+  });
+  return moved;
 }
 
 /// Indices of the singles `fits`, best first: by dBIC, the challengers that do not beat the best leader by
@@ -1657,16 +1666,13 @@ std::optional<CandidateFit> polish_leading_singles(const CandidateJobs& c, std::
 void rank_leader_ahead(std::vector<CandidateFit>& ranked, double margin) {
   std::vector<std::size_t> order(ranked.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  const std::optional<std::size_t> leader = put_leader_ahead(order, ranked, margin);
-  if (!leader) return;
-  const std::string note = "ranked after " + ranked[*leader].name() +
-                           ": a challenger must beat the leader by the evidence threshold, dBIC " + fmt(margin);
+  const std::optional<LeaderAhead> moved = put_leader_ahead(order, ranked, margin);
+  if (!moved) return;
+  for (std::size_t i : moved->behind)
+    ranked[i].support_note = "ranked after " + ranked[moved->leader].name() +
+                             ": a challenger must beat the leader by the evidence threshold, dBIC " + fmt(margin);
   std::vector<CandidateFit> reordered;
-  for (std::size_t i : order) {
-    if (ranked[i].challenger && i < *leader && ranked[i].delta_bic <= ranked[*leader].delta_bic + margin)
-      ranked[i].support_note = note;
-    reordered.push_back(std::move(ranked[i]));
-  }
+  for (std::size_t i : order) reordered.push_back(std::move(ranked[i]));
   ranked = std::move(reordered);
 }
 
