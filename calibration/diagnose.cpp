@@ -1421,6 +1421,59 @@ void refine_named_single(const CandidateJobs& c, bool continued, std::optional<R
   log << ahead->log;
 }
 
+/// The named single's effect with each held parameter that has a catalogue named_value (not at it already) set to it,
+/// and those parameters in words ("stretch_exponent 1"); nothing when there is none.
+std::optional<std::pair<material::EffectSpec, std::string>> named_form(const material::EffectSpec& e) {
+  std::pair<material::EffectSpec, std::string> alt{e, ""};
+  for (const auto& p : material::find_effect(e.kind)->parameters) {
+    if (p.fit || !p.named_value) continue;
+    const auto it = e.parameters.find(p.name);
+    if ((it != e.parameters.end() ? it->second : p.default_value) == *p.named_value) continue;
+    alt.first.parameters[p.name] = *p.named_value;
+    alt.second += (alt.second.empty() ? "" : ", ") + p.name + " " + fmt(*p.named_value);
+  }
+  if (alt.second.empty()) return std::nullopt;
+  return alt;
+}
+
+/// Step 4c (catalogue EffectParameterInfo::named_value): the single named alone, fitted once more from its own fit
+/// (its base and effect; the polish's freedoms when it was polished) with its effect's held parameters at their
+/// named_value, then on in rounds as the named single would be (fitted_on_when_named, fit_in_rounds); kept when its BIC
+/// is lower. After the ranking and the rounds, so that it chooses the named family's form, not the family
+/// (docs/physics.md 9.49).
+void refit_named_form(const CandidateJobs& c, Diagnosis& d, std::ostream& log) {
+  if (d.candidates.empty() || !d.candidates.front().supported) return;
+  CandidateFit& named = d.candidates.front();
+  if (named.kinds.size() != 1 || !named.converged) return;
+  const auto alt = named_form(named.effects.front());
+  if (!alt) return;
+  CandidateFit start = named;
+  start.effects = {alt->first};
+  DiagnoseOptions more = named.polished ? polish_freedoms(c.options) : c.options;
+  more.polishing = c.options.fit_polished_only && !polished_only_names(named.effects).empty();
+  CandidateFit q =
+      run_all<CandidateFit>({[&] { return polish_single(start, c, more); }}, c.options.threads, {}, &c.spare).front();
+  const std::string what = named.name() + ", named, fitted again with " + alt->second;
+  log << "diagnose: " << what << ": dBIC " << fmt(named.delta_bic, 4) << " -> " << fmt(q.delta_bic, 4) << ", "
+      << q.evaluations - named.evaluations << " runs, " << fmt(q.seconds - named.seconds, 2) << " s"
+      << (q.converged ? "" : " (failed: " + q.message + ")") << "\n";
+  q.polished = named.polished;
+  carry_support(q, named);
+  q.polish_added = named.polish_added + (q.parameters - named.parameters);
+  q.delta_bic_unpolished = named.delta_bic_unpolished;
+  if (q.converged && fitted_on_when_named(q, c.options)) fit_in_rounds(q, c, Stage::alone, log);
+  const bool kept = q.converged && q.bic < named.bic;
+  log << "diagnose: " << what << (kept ? ": kept as the named model" : ": not kept (no lower BIC)") << "\n";
+  if (!kept) {
+    named.evaluations = q.evaluations;  // its runs and time count, kept or not
+    named.seconds = q.seconds;
+    return;
+  }
+  q.support_note += std::string(q.support_note.empty() ? "" : "; ") + "named: fitted again with " + alt->second +
+                    ", dBIC " + fmt(named.delta_bic, 4) + " before";
+  named = std::move(q);
+}
+
 /// The early stop of a pair whose best single leaves chi2_single: after pair_stop_iteration iterations, chi2 above
 /// (1 - pair_stop_share) chi2_single (DiagnoseOptions::pair_stop_share; none when it is 0).
 EarlyStop pair_stop(const DiagnoseOptions& o, double chi2_single) {
@@ -2096,6 +2149,7 @@ Diagnosis diagnose(const material::MaterialSpec& baseline, const Campaign& campa
     PairStage stage = fit_pairs(jobs, singles, top, more, log);
     rank_candidates(std::move(singles), std::move(stage.pairs), top, std::move(more), options, d);
     refine_named_single(jobs, continued, std::move(stage.rounds), d, log);
+    refit_named_form(jobs, d, log);
     confirm_out_of_sample(jobs, d, log);
     if (!d.candidates.empty() && d.candidates.front().supported) {
       winner_verdict(baseline, options, d);

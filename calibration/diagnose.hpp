@@ -62,6 +62,10 @@
 ///     stopped at max_iterations with a test beyond noise is fitted on from there: its parameters and error after,
 ///     not the ranking (docs/physics.md 9.45); fitted ahead beside the pairs when there are pairs, and used only
 ///     when the ranking names that single alone (the same result, less wall time: docs/physics.md 9.46).
+///  4c. A single named alone whose effect has held parameters with a catalogue named_value (friction
+///     stretch_exponent 1, the nominal Jenkins element) is fitted once more from its fit with them at that value (the
+///     polish's freedoms when it was polished, then in rounds as in 4) and that fit replaces it when its BIC is lower:
+///     the family is the ranking's, the form of the named model the better one (docs/physics.md 9.49).
 ///  5. Verdict: the best supported candidate, its error per test and region after the refit, whether
 ///     every test then lies at the noise level, the evidence in words (data signatures: rate dependence
 ///     of the hysteresis, loading vs unloading, phase and modulus error vs frequency, preload dependence

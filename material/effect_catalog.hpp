@@ -82,6 +82,12 @@ struct EffectParameterInfo {
   /// scanned about its start by factors 0-10 only, it could not leave 0 once the scan kept it there; docs/physics.md 9.47).
   /// Only with log_scale false.
   bool scan_decades = false;
+  /// For a parameter diagnose holds (fit false): another value at which the NAMED single is fitted once more after the
+  /// ranking, from its own fit, and kept when its BIC is lower (none: not tried). A form that fits its own family
+  /// better but would rival other families in the ranking (friction stretch_exponent 1, the nominal Jenkins element,
+  /// named friction on four Mullins campaigns when fitted in the ranking; docs/physics.md 9.49): the family stays the
+  /// ranking's, the named model and its error after are the better form's.
+  std::optional<double> named_value{};
 };
 
 /// One effect of the catalogue.

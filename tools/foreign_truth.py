@@ -22,7 +22,7 @@ The generator works in 1D at nu = 0 with free laterals (stretch l = 1 - e); cush
   Prony x J^-c            a_j -> a_j l^-c on each increment (history share 1)             power_law
   Prony x exp(c (1 - J))  a_j -> a_j exp(k e) on each increment (history share 1,         exponential
                           strain measure share 1)
-  friction                k (E - E_p), |.| <= s_y on E = (l^2 - 1)/2                      jenkins (strain measure)
+  friction                k J^-2n (E - E_p), |.| <= s_y J^-n on E = (l^2 - 1)/2, n = 1      jenkins
   stiffness damping       beta_s C_d D^q E, C_d the current (w = 1) or initial (w = 0) tangent  stiffness_proportional
                           (w = 1, q = 1, nominal-tangent share 1: P = beta_s E_t l', same), fractional (w = 0,
                           beta_s (2 pi f_r)^(1-q) 2 sum mu_i = c, stretch exponent 2: a constant nominal
@@ -92,7 +92,7 @@ def effect_of(family, p, base, where):
                 "strain_measure_share": 1.0}, "same"
     if family == "friction" and form == "jenkins":
         return {"kind": "friction", "stiffness_kPa": param(p, "stiffness_kPa", where),
-                "yield_stress_kPa": param(p, "yield_stress_kPa", where)}, "strain measure"
+                "yield_stress_kPa": param(p, "yield_stress_kPa", where), "stretch_exponent": 1.0}, "same"
     if family == "stiffness_damping" and form == "stiffness_proportional":
         return {"kind": "stiffness_damping", "beta_s": param(p, "beta_s", where), "current_tangent_share": 1.0,
                 "nominal_tangent_share": 1.0, "derivative_order": 1.0}, "same"

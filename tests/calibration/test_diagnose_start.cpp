@@ -169,9 +169,13 @@ TEST(DiagnoseStart, WeakJenkinsFrictionIsFoundFromTheScanOfItsOwnParameters) {
   ASSERT_EQ(d.at("winner"), "friction") << d.at("verdict");
   EXPECT_TRUE(d.at("winner_at_noise_level").get<bool>()) << d.at("verdict");
   const nlohmann::json& fitted = d.at("fragment").at("effects").at(0);
+  // The generator's Jenkins element is nominal: the named friction, fitted again at stretch exponent 1 (the nominal
+  // element in this test, docs/physics.md 5.2b; diagnose step 4c), keeps that form, and its k and s_y are then the
+  // truth's own, within 30 % (measured 2026-12-08: 0.92 and 0.83 of the truth's; dBIC 6.1 at n = 0 -> 23.9).
+  EXPECT_EQ(fitted.value("stretch_exponent", 0.0), 1.0);
   for (const char* key : {"stiffness_kPa", "yield_stress_kPa"}) {
     const double ratio = fitted.at(key).get<double>() / jenkins.at(key).get<double>();
-    EXPECT_LT(std::abs(std::log(ratio)), std::log(3.0)) << key << ": fitted/truth " << ratio;
+    EXPECT_LT(std::abs(std::log(ratio)), std::log(1.3)) << key << ": fitted/truth " << ratio;
   }
   fs::remove_all(c.set);
 }

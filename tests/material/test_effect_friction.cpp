@@ -68,15 +68,19 @@ TEST(EffectFriction, TangentMatchesFiniteDifferences) {
   // elastic increment (large s_y); over hyperfoam. Tolerance 1e-6 relative.
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(-0.05, 0.05);
-  for (const FrictionParameters& p : {FrictionParameters{0.01, 2e-4, 0.0}, FrictionParameters{0.01, 2e-4, 0.004},
-                                      FrictionParameters{0.01, 10.0, 0.0}}) {
+  // Also with the stretch exponent n = 1 and n = -0.5 (k J^-2n, s_y J^-n), sliding and elastic.
+  for (const FrictionParameters& p :
+       {FrictionParameters{0.01, 2e-4, 0.0}, FrictionParameters{0.01, 2e-4, 0.004}, FrictionParameters{0.01, 10.0, 0.0},
+        FrictionParameters{0.01, 2e-4, 0.0, 1.0}, FrictionParameters{0.01, 2e-4, 0.004, -0.5},
+        FrictionParameters{0.01, 10.0, 0.0, 1.0}}) {
     const FrictionEffect m(test::effect_test_foam(), p);
     for (int trial = 0; trial < 4; ++trial) {
       std::vector<double> state(6);
       for (double& x : state) x = u(rng);
       const Mat3 F = test::random_F(rng, 0.3);
       EXPECT_LT(test::increment_tangent_error(m, Mat3::Identity(), F, 0.1, state), 1e-6)
-          << "s_y = " << p.yield_stress << ", h = " << p.hardening << ", trial " << trial;
+          << "s_y = " << p.yield_stress << ", h = " << p.hardening << ", n = " << p.stretch_exponent << ", trial "
+          << trial;
     }
   }
 }
@@ -95,6 +99,51 @@ TEST(EffectFriction, ReturnedStressLiesOnTheYieldSurface) {
   EXPECT_GT(tensor_norm(Ep), 0.0);
 }
 
+/// The friction branch's nominal stress P_f = l S_f11 along a uniaxial compression l: 1 -> l_min -> l_back (F =
+/// diag(l, 1, 1): J = l, the kinematics of a uniaxial test at nu = 0) in `steps` steps each way.
+std::vector<std::pair<double, double>> nominal_friction_path(const FrictionEffect& m, double l_min, double l_back,
+                                                             int steps) {
+  std::vector<double> l_path;
+  for (int i = 0; i <= steps; ++i) l_path.push_back(1.0 + (l_min - 1.0) * i / steps);
+  for (int i = 1; i <= steps; ++i) l_path.push_back(l_min + (l_back - l_min) * i / steps);
+  std::vector<double> state(m.state_size()), next(m.state_size());
+  m.initial_state(state);
+  std::vector<std::pair<double, double>> out;
+  for (std::size_t i = 1; i < l_path.size(); ++i) {
+    const Mat3 F0 = Vec3(l_path[i - 1], 1.0, 1.0).asDiagonal(), F1 = Vec3(l_path[i], 1.0, 1.0).asDiagonal();
+    const PointResponse r = m.integrate(F0, F1, 0.1, state, next);
+    EXPECT_EQ(r.status, Status::ok) << r.message;
+    const double S_f = r.S(0) - m.inner().integrate(F0, F1, 0.1, {}, {}).S(0);
+    out.push_back({l_path[i], l_path[i] * S_f});
+    state.swap(next);
+  }
+  return out;
+}
+
+TEST(EffectFriction, StretchExponentOneIsANominalJenkinsElementInUniaxialCompression) {
+  // Closed form (effect_friction.hpp): with n = 1 the sliding branch's nominal stress is -s_y at every stretch of the
+  // compression to l = 0.25 (tolerance 1e-12 relative), +s_y on the way back once it slides again, and the sticking
+  // nominal stiffness just after the reversal is k (1 - (E - E_p)/l^2) = k + s_y/l (E - E_p = -s_y l/k there; k = 10
+  // kPa, s_y = 0.05 kPa: 2 % above k at l = 0.25; one step of 1.2e-4 in l, tolerance 1e-3 relative). With
+  // n = 0 the sliding nominal stress is -s_y l instead (it falls with the compression): the test can tell them apart.
+  const double k = 0.01, s_y = 5e-5;
+  const FrictionEffect nominal(test::effect_test_foam(), {k, s_y, 0.0, 1.0});
+  const FrictionEffect green(test::effect_test_foam(), {k, s_y, 0.0, 0.0});
+  const int steps = 3000;
+  const auto p1 = nominal_friction_path(nominal, 0.25, 0.6, steps);
+  const auto p0 = nominal_friction_path(green, 0.25, 0.6, steps);
+  for (int i = steps / 10; i < steps; i += steps / 10) {
+    EXPECT_NEAR(p1[i].second, -s_y, 1e-12 * s_y) << "l = " << p1[i].first;
+    EXPECT_NEAR(p0[i].second, -s_y * p0[i].first, 1e-12 * s_y) << "l = " << p0[i].first;
+  }
+  EXPECT_NEAR(p1.back().second, s_y, 1e-12 * s_y);  // sliding again in extension, at l = 0.6
+  // the first step back from l = 0.25 sticks: its stiffness in compression, d(-P_f)/de = dP_f/dl (e = 1 - l)
+  const double dl = p1[steps].first - p1[steps - 1].first;
+  const double stiffness = (p1[steps].second - p1[steps - 1].second) / dl;
+  EXPECT_NEAR(stiffness, k + s_y / 0.25, 1e-3 * k);
+  EXPECT_LT(std::abs(p1[steps].second), s_y);
+}
+
 TEST(EffectFriction, ComplexTangentIsTheElasticBranchTangent) {
   // Inside the elastic range the increment tangent equals complex_tangent (inner + k I); 1e-12 relative.
   const FrictionEffect m(test::effect_test_foam(), {0.01, 2e-4, 0.0});
@@ -105,6 +154,11 @@ TEST(EffectFriction, ComplexTangentIsTheElasticBranchTangent) {
   const PointResponse r = m.integrate(F, F, 0.0, state, next);
   EXPECT_LT(test::rel_diff(r.dS_dE, m.complex_tangent(F, 30.0).real().eval()), 1e-12);
   EXPECT_EQ(m.complex_tangent(F, 30.0).imag(), Mat6::Zero());
+  // with n = 1, k(J) = k J^-2 at the base state; the branch unloaded at F (E = E_p)
+  const FrictionEffect stretched(test::effect_test_foam(), {0.01, 2e-4, 0.0, 1.0});
+  const PointResponse s = stretched.integrate(F, F, 0.0, state, next);
+  EXPECT_LT(test::rel_diff(s.dS_dE, stretched.complex_tangent(F, 30.0).real().eval()), 1e-12);
+  EXPECT_GT(test::rel_diff(s.dS_dE, r.dS_dE), 1e-3);  // J^-2 differs from 1 at E11 = 1e-2
 }
 
 }  // namespace
