@@ -76,6 +76,12 @@ TEST(EffectCatalog, EveryEntryIsSelfDescribing) {
       if (p.polished_only) {
         EXPECT_FALSE(p.fit) << p.name;  // held by the singles, fitted in the polish only
       }
+      if (p.named_value) {  // a held parameter's other admissible value, tried on the named single only
+        EXPECT_FALSE(p.fit) << p.name;
+        EXPECT_GE(*p.named_value, p.min) << p.name;
+        EXPECT_LE(*p.named_value, p.max) << p.name;
+        EXPECT_NE(*p.named_value, p.diagnose_value.value_or(p.default_value)) << p.name;
+      }
       if (!p.scan_with.empty()) {  // a fitted partner of the same effect, not the parameter itself
         EXPECT_TRUE(p.fit) << p.name;
         EXPECT_NE(p.scan_with, p.name);
