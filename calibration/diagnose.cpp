@@ -1285,9 +1285,9 @@ void carry_support(CandidateFit& to, const CandidateFit& from) {
 /// Jacobian), or as one job of a stage that runs others (it borrows only the cores their threads lend).
 enum class Stage { alone, beside_others };
 
-/// One more run of the polished single `from` from where it ended, with the freedoms of `more`: the new fit when it
-/// converged at a lower BIC, with from's polish bookkeeping (and support) carried over, else nothing; its runs and time
-/// are charged to `from` either way. `what` and `kept_note` word the log line.
+/// One more run of the single `from` (polished, or the named single of step 4c) from where it ended, with the freedoms
+/// of `more`: the new fit when it converged at a lower BIC, with from's polish bookkeeping (and support) carried over,
+/// else nothing; its runs and time are charged to `from` either way. `what` and `kept_note` word the log line.
 std::optional<CandidateFit> fit_on(CandidateFit& from, const CandidateJobs& c, const DiagnoseOptions& more,
                                    const std::string& what, const std::string& kept_note, Stage stage,
                                    std::ostream& log) {
@@ -1304,7 +1304,7 @@ std::optional<CandidateFit> fit_on(CandidateFit& from, const CandidateJobs& c, c
   from.evaluations = q.evaluations;  // the run's model runs and time count, kept or not
   from.seconds = q.seconds;
   if (!kept) return std::nullopt;
-  q.polished = true;
+  q.polished = from.polished;
   carry_support(q, from);
   q.polish_added = from.polish_added + (q.parameters - from.parameters);
   q.delta_bic_unpolished = from.delta_bic_unpolished;
@@ -1438,40 +1438,28 @@ std::optional<std::pair<material::EffectSpec, std::string>> named_form(const mat
 
 /// Step 4c (catalogue EffectParameterInfo::named_value): the single named alone, fitted once more from its own fit
 /// (its base and effect; the polish's freedoms when it was polished) with its effect's held parameters at their
-/// named_value, then on in rounds as the named single would be (fitted_on_when_named, fit_in_rounds); kept when its BIC
-/// is lower. After the ranking and the rounds, so that it chooses the named family's form, not the family
-/// (docs/physics.md 9.49).
+/// named_value (fit_on), kept when its BIC is lower and then fitted on in rounds as the named single would be
+/// (fitted_on_when_named, fit_in_rounds). After the ranking and the rounds, so that it chooses the named family's form,
+/// not the family (docs/physics.md 9.49).
 void refit_named_form(const CandidateJobs& c, Diagnosis& d, std::ostream& log) {
   if (d.candidates.empty() || !d.candidates.front().supported) return;
   CandidateFit& named = d.candidates.front();
   if (named.kinds.size() != 1 || !named.converged) return;
   const auto alt = named_form(named.effects.front());
   if (!alt) return;
-  CandidateFit start = named;
+  CandidateFit start = named;  // its BIC, support and bookkeeping are the named fit's: fit_on compares with them
   start.effects = {alt->first};
   DiagnoseOptions more = named.polished ? polish_freedoms(c.options) : c.options;
   more.polishing = c.options.fit_polished_only && !polished_only_names(named.effects).empty();
-  CandidateFit q =
-      run_all<CandidateFit>({[&] { return polish_single(start, c, more); }}, c.options.threads, {}, &c.spare).front();
-  const std::string what = named.name() + ", named, fitted again with " + alt->second;
-  log << "diagnose: " << what << ": dBIC " << fmt(named.delta_bic, 4) << " -> " << fmt(q.delta_bic, 4) << ", "
-      << q.evaluations - named.evaluations << " runs, " << fmt(q.seconds - named.seconds, 2) << " s"
-      << (q.converged ? "" : " (failed: " + q.message + ")") << "\n";
-  q.polished = named.polished;
-  carry_support(q, named);
-  q.polish_added = named.polish_added + (q.parameters - named.parameters);
-  q.delta_bic_unpolished = named.delta_bic_unpolished;
-  if (q.converged && fitted_on_when_named(q, c.options)) fit_in_rounds(q, c, Stage::alone, log);
-  const bool kept = q.converged && q.bic < named.bic;
-  log << "diagnose: " << what << (kept ? ": kept as the named model" : ": not kept (no lower BIC)") << "\n";
-  if (!kept) {
-    named.evaluations = q.evaluations;  // its runs and time count, kept or not
-    named.seconds = q.seconds;
-    return;
-  }
-  q.support_note += std::string(q.support_note.empty() ? "" : "; ") + "named: fitted again with " + alt->second +
-                    ", dBIC " + fmt(named.delta_bic, 4) + " before";
-  named = std::move(q);
+  std::optional<CandidateFit> q = fit_on(start, c, more, ", named, fitted again with " + alt->second,
+                                         " (kept: the named model)", Stage::alone, log);
+  named.evaluations = start.evaluations;  // its runs and time count, kept or not
+  named.seconds = start.seconds;
+  if (!q) return;
+  if (fitted_on_when_named(*q, c.options)) fit_in_rounds(*q, c, Stage::alone, log);
+  q->support_note += std::string(q->support_note.empty() ? "" : "; ") + "named: fitted again with " + alt->second +
+                     ", dBIC " + fmt(named.delta_bic, 4) + " before";
+  named = std::move(*q);
 }
 
 /// The early stop of a pair whose best single leaves chi2_single: after pair_stop_iteration iterations, chi2 above

@@ -27,9 +27,9 @@ PointResponse FrictionEffect::integrate(const Mat3& F_old, const Mat3& F_new, do
     return r;
   }
   const double a = p_.stiffness * std::pow(J, -2.0 * n), b = p_.yield_stress * std::pow(J, -n);
-  // d(J^-m)/dE = -m J^-m C^-1 (stress-like row over engineering dE)
-  const Vec6 Cinv = to_voigt_stress((F_new.transpose() * F_new).inverse());
-  const Vec6 da = -2.0 * n * a * Cinv, db = -n * b * Cinv;
+  // d(J^-m)/dE = -m J^-m dJ/dE / J (stress-like row over engineering dE)
+  const Vec6 dlnJ = dJ_dE(F_new) / J;
+  const Vec6 da = -2.0 * n * a * dlnJ, db = -n * b * dlnJ;
   // Tensor components in Voigt order (stress-like storage for E and E_p alike).
   const Vec6 E = to_voigt_stress(green_lagrange(F_new));
   const Vec6 Ep_old = Eigen::Map<const Vec6>(own(state_old).data());
@@ -45,7 +45,7 @@ PointResponse FrictionEffect::integrate(const Mat3& F_old, const Mat3& F_new, do
     const Vec6 N = xi_trial / norm_trial;
     Ep += (norm_trial - b) / (a + h) * N;
     const double g = (h * norm_trial + a * b) / (a + h);
-    const Vec6 NW = (Vec6() << N.head<3>(), 2.0 * N.tail<3>()).finished();  // N: X = NW . X (stress-like X)
+    const Vec6 NW = to_voigt_strain(from_voigt_stress(N));  // engineering shear: N : X = NW . X (stress-like X)
     const Eigen::Matrix<double, 1, 6> dnorm = NW.transpose() * dxi;
     const Eigen::Matrix<double, 1, 6> dg = (h * dnorm + (b - g) * da.transpose() + a * db.transpose()) / (a + h);
     S_f = h * Ep_old + g * N;
